@@ -1,0 +1,88 @@
+#pragma once
+// Message value types (STYLE habit 5): a std::variant of payload structs, each with an
+// explicit size in bytes (SPEC §4). The radio knows these formats, never protocol logic.
+#include <array>
+#include <cstdint>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "net/vec2.hpp"
+#include "sim/ids.hpp"
+
+namespace masnet::net {
+
+using sim::NodeId;
+
+/// Periodic "I am here" of the demo scenario.
+struct Beacon {
+  NodeId sender;
+  Vec2 position;
+};
+/// Initialisation step 1 (paper §III-B): a robot announces its position at max range.
+struct Position {
+  NodeId robot;
+  Vec2 position;
+};
+/// Initialisation step 3: a sensor reports its position and measurement to its closest robot.
+struct Report {
+  NodeId sensor;
+  Vec2 position;
+  double reading;  ///< sent as 32 bits (MessageSizes::measurement_bytes); kept exact here
+};
+/// Radius-doubling round: "who is within radius_m of me?"
+struct Discover {
+  NodeId robot;
+  Vec2 position;
+  double radius;  ///< world units; sent as 32 bits
+};
+/// Reply of a robot to a Discover.
+struct Neighbor {
+  NodeId robot;
+  Vec2 position;
+};
+/// First round of an update: sensors inside this convex cell, send me your reading.
+struct Sense {
+  NodeId robot;
+  std::uint32_t update;  ///< the robot's update counter, so stale readings can be dropped
+  std::vector<Vec2> cell;
+};
+/// A sensor's answer to Sense.
+struct Reading {
+  NodeId sensor;
+  std::uint32_t update;
+  Vec2 position;
+  double reading;  ///< sent as 32 bits (MessageSizes::measurement_bytes); kept exact here
+};
+
+using Payload = std::variant<Beacon, Position, Report, Discover, Neighbor, Sense, Reading>;
+
+/// The message types, in variant order; used as array indices for counters.
+enum class MessageType : std::uint8_t { beacon, position, report, discover, neighbor, sense, reading };
+inline constexpr std::size_t kMessageTypeCount = std::variant_size_v<Payload>;
+
+inline constexpr std::array<std::string_view, kMessageTypeCount> kMessageTypeNames = {
+    "BEACON", "POSITION", "REPORT", "DISCOVER", "NEIGHBOR", "SENSE", "READING"};
+
+inline MessageType type_of(const Payload& payload) {
+  return static_cast<MessageType>(payload.index());
+}
+inline std::string_view name_of(MessageType type) {
+  return kMessageTypeNames[static_cast<std::size_t>(type)];
+}
+
+/// Field sizes on the air (bytes). Defaults follow SPEC §4; all configurable (`radio.sizes`).
+struct MessageSizes {
+  std::uint32_t header_bytes = 8;       ///< MAC/PHY header and frame check
+  std::uint32_t id_bytes = 2;           ///< a node id
+  std::uint32_t position_bytes = 8;     ///< two 32-bit coordinates
+  std::uint32_t measurement_bytes = 4;  ///< one 32-bit reading
+  std::uint32_t radius_bytes = 4;       ///< one 32-bit radius
+  std::uint32_t vertex_bytes = 8;       ///< one polygon vertex
+  std::uint32_t counter_bytes = 2;      ///< an update counter
+};
+
+/// Size on the air of a frame carrying `payload`.
+std::uint32_t size_bytes(const Payload& payload, const MessageSizes& sizes);
+
+}  // namespace masnet::net

@@ -1,0 +1,179 @@
+#pragma once
+// The simulated radio as a *medium* (STYLE: ARGoS range-and-bearing, ns-3 YansWifiChannel):
+// unit-disk reception with a per-transmission range, delay = latency + airtime + jitter,
+// Bernoulli loss per reception, per-node counters by message type, and the energy ledger of
+// SPEC §4. It knows message formats, never protocol logic. See docs/radio-and-energy.md.
+#include <cstdint>
+#include <deque>
+#include <span>
+#include <vector>
+
+#include "net/energy.hpp"
+#include "net/messages.hpp"
+#include "net/spatial_grid.hpp"
+#include "net/vec2.hpp"
+#include "sim/simulator.hpp"
+
+namespace masnet::net {
+
+/// `ideal`: no contention. `airtime`: a transmitter sends one frame at a time (its frames
+/// queue behind each other); receivers are never contended.
+enum class RadioLevel { ideal, airtime };
+
+struct RadioParams {
+  double max_range = 1.5;          ///< world units; every range is capped here
+  double meters_per_unit = 100.0;  ///< converts ranges to metres for the energy model
+  double latency_s = 50e-6;        ///< fixed per-frame delay (processing + propagation)
+  double bitrate_bps = 1e6;        ///< airtime = bytes·8 / bitrate
+  double jitter_s = 0.0;           ///< extra delay per reception, uniform in [0, jitter)
+  RadioLevel level = RadioLevel::airtime;
+  double loss = 0.0;               ///< probability that a reception is lost
+  EnergyParams energy;
+  MessageSizes sizes;
+};
+
+/// A frame on the air. Broadcasts share one Frame among all their receivers.
+struct Frame {
+  NodeId source = sim::kNoNode;
+  NodeId destination = sim::kNoNode;  ///< kNoNode for a broadcast
+  MessageType type = MessageType::beacon;
+  std::uint32_t size_bytes = 0;
+  double range = 0.0;  ///< world units, after the max_range cap
+  sim::Time sent_at{};
+  Payload payload;
+
+  bool is_broadcast() const { return destination == sim::kNoNode; }
+};
+
+/// Receives frames and battery news for all nodes of one radio (the world implements it).
+class RadioListener {
+ public:
+  virtual ~RadioListener() = default;
+  /// `frame` reached `receiver` (the addressee of a unicast or any hearer of a broadcast).
+  virtual void on_frame(NodeId receiver, const Frame& frame) = 0;
+  /// `node`'s battery is empty: it will neither send nor receive again.
+  virtual void on_battery_empty(NodeId /*node*/) {}
+};
+
+/// Where the mobile nodes are now (the world implements it; positions are read at send time).
+class MobilePositions {
+ public:
+  virtual ~MobilePositions() = default;
+  virtual Vec2 position(NodeId node) const = 0;
+  /// An upper bound on the speed (world units / s) of every mobile node from now until the
+  /// world next calls `Radio::raise_speed_bound`.
+  virtual double speed_bound() const = 0;
+};
+
+/// Per node, per message type.
+struct TypeCounters {
+  std::uint64_t tx_count = 0, tx_bytes = 0;
+  std::uint64_t rx_count = 0, rx_bytes = 0;
+};
+
+/// Per node totals beyond the per-type counters.
+struct NodeRadioStats {
+  std::uint64_t overheard_count = 0, overheard_bytes = 0;  ///< unicasts heard by others
+  std::uint64_t lost_count = 0;         ///< receptions lost to `loss`
+  std::uint64_t unreachable_count = 0;  ///< unicasts whose addressee was out of range
+  std::uint64_t refused_count = 0;      ///< sends refused: battery empty
+  double energy_tx_j = 0.0, energy_rx_j = 0.0, energy_idle_j = 0.0;
+  bool alive = true;
+  sim::Time died_at = sim::kTimeMax;
+};
+
+class Radio {
+ public:
+  Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t seed);
+
+  /// Registers node ids densely from 0: a static node at `position`, or a mobile node whose
+  /// position `mobile_positions` answers.
+  void add_static_node(NodeId id, const Vec2& position);
+  void add_mobile_node(NodeId id);
+  void set_listener(RadioListener* listener) { listener_ = listener; }
+  void set_mobile_positions(const MobilePositions* positions) { mobile_ = positions; }
+  /// Only message types in `mask` (bit = MessageType) are handed to `on_frame` at `node`;
+  /// others are still heard and paid for. Saves calls, never changes results.
+  void set_interest(NodeId node, std::uint32_t mask);
+  /// A mobile node may now move faster than the last bound (world units / s).
+  void raise_speed_bound(double speed) {
+    if (speed > margin_speed_) margin_speed_ = speed;
+  }
+
+  /// Broadcasts `payload` with range `range` (world units, capped at max_range). Every
+  /// node within range at send time hears it and pays E_rx. Returns false if refused.
+  bool broadcast(NodeId source, double range, Payload payload);
+  /// Sends `payload` to `destination` with range = their distance now (capped); others
+  /// within that range overhear it and pay E_rx.
+  bool unicast(NodeId source, NodeId destination, Payload payload);
+
+  Vec2 position(NodeId node) const;
+  std::size_t node_count() const { return nodes_.size(); }
+  const RadioParams& params() const { return params_; }
+  const TypeCounters& counters(NodeId node, MessageType type) const {
+    return counters_[sim::index(node) * kMessageTypeCount + static_cast<std::size_t>(type)];
+  }
+  /// Per-node stats with idle energy brought up to now.
+  const NodeRadioStats& stats(NodeId node);
+  double energy_j(NodeId node) {
+    const NodeRadioStats& s = stats(node);
+    return s.energy_tx_j + s.energy_rx_j + s.energy_idle_j;
+  }
+  bool alive(NodeId node) const { return nodes_[sim::index(node)].stats.alive; }
+
+  /// Airtime of a frame of `bytes`.
+  sim::Duration airtime(std::uint32_t bytes) const;
+
+ private:
+  struct Node {
+    Vec2 position{0, 0};  // static nodes only
+    bool mobile = false;
+    std::uint32_t interest = 0xFFFFFFFFu;
+    std::uint64_t frames_sent = 0;
+    sim::Time busy_until{};
+    sim::Time idle_accounted_to{};
+    sim::EventId depletion_event;
+    NodeRadioStats stats;
+  };
+  struct InFlight {
+    Frame frame;
+    std::vector<NodeId> receivers;
+    std::uint32_t pending = 0;
+  };
+
+  bool transmit(NodeId source, NodeId destination, double range, Payload&& payload);
+  void prepare_static_index();
+  void prepare_mobile_index();
+  template <class Visit>
+  void for_each_node_within(NodeId source, const Vec2& center, double range, Visit&& visit);
+  bool charge(NodeId node, double energy_j, bool is_tx);
+  void accrue_idle(Node& node);
+  void schedule_depletion(NodeId id);
+  void kill(NodeId id);
+  void hand_over(const Frame& frame, NodeId receiver);
+  void deliver(std::uint32_t flight);
+  void deliver_one(std::uint32_t flight, NodeId receiver);
+  void release(std::uint32_t flight);
+
+  sim::Simulator& simulator_;
+  RadioParams params_;
+  std::uint64_t seed_;
+  RadioListener* listener_ = nullptr;
+  const MobilePositions* mobile_ = nullptr;
+
+  std::vector<Node> nodes_;
+  std::vector<TypeCounters> counters_;
+  std::vector<NodeId> static_ids_, mobile_ids_;
+  std::vector<Vec2> static_positions_;
+  SpatialGrid static_grid_, mobile_grid_;
+  bool static_index_dirty_ = true;
+  sim::Time mobile_index_time_{};
+  bool mobile_index_valid_ = false;
+  double margin_speed_ = 0.0;  // speed bound since the mobile index was built
+
+  std::deque<InFlight> flights_;  // deque: a frame stays put while handlers send new ones
+  std::vector<std::uint32_t> free_flights_;
+  std::vector<NodeId> scratch_receivers_;
+};
+
+}  // namespace masnet::net
