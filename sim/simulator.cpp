@@ -10,36 +10,8 @@ std::string Fingerprint::hex() const {
   return text;
 }
 
-Simulator::Simulator() { reserve(1024); }
-
-void Simulator::reserve(std::size_t n) {
-  queue_.reserve(n);
-  slots_.reserve(n);
-  free_slots_.reserve(n);
-}
-
-EventId Simulator::schedule(Time when, EventAction action) {
-  std::uint32_t slot;
-  if (!free_slots_.empty()) {
-    slot = free_slots_.back();
-    free_slots_.pop_back();
-  } else {
-    slot = static_cast<std::uint32_t>(slots_.size());
-    slots_.emplace_back();
-  }
-  const std::uint64_t sequence = next_sequence_++;
-  slots_[slot].action = action;
-  slots_[slot].sequence = sequence;
-  queue_.push(EventRecord{to_ns(when), sequence, slot});
-  return EventId{slot, sequence};
-}
-
 bool Simulator::cancel(EventId id) {
-  if (!id.valid() || id.slot >= slots_.size()) return false;
-  Slot& slot = slots_[id.slot];
-  if (slot.sequence != id.sequence || !slot.action) return false;
-  // Lazy deletion: the record stays in the heap and is dropped when it reaches the top.
-  slot.action.clear();
+  if (!queue_.cancel(id)) return false;
   ++cancelled_pending_;
   return true;
 }
@@ -48,23 +20,18 @@ template <bool kBounded>
 std::uint64_t Simulator::run_loop(std::int64_t limit_ns) {
   const std::uint64_t before = events_run_;
   stop_requested_ = false;
+  EventAction action;
   while (!queue_.empty()) {
-    const EventRecord record = queue_.top();
-    if (kBounded && record.time_ns > limit_ns) break;
-    queue_.pop();
-    Slot& slot = slots_[record.slot];
-    EventAction action = slot.action;
-    // Free the slot before running, so the events this one schedules can reuse it.
-    slot.action.clear();
-    free_slots_.push_back(record.slot);
+    if (kBounded && queue_.first_time() > limit_ns) break;
+    const std::int64_t time_ns = queue_.pop(action);
     if (!action) {
       --cancelled_pending_;
       continue;
     }
-    MASNET_ASSERT(record.time_ns >= to_ns(now_), "time went backwards");
-    now_ = Time{Duration{record.time_ns}};
+    MASNET_ASSERT(time_ns >= to_ns(now_), "time went backwards");
+    now_ = Time{Duration{time_ns}};
     ++events_run_;
-    fingerprint_.mix(static_cast<std::uint64_t>(record.time_ns));
+    fingerprint_.mix(static_cast<std::uint64_t>(time_ns));
     action();
     if (stop_requested_) break;
   }

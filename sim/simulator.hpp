@@ -2,6 +2,7 @@
 // The discrete-event kernel: a clock, a queue of small event records and a pool of inline
 // actions. No globals: pass `Simulator&` explicitly (STYLE habit 1).
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "sim/assert.hpp"
@@ -12,16 +13,9 @@
 
 namespace masnet::sim {
 
-/// Handle of a scheduled event, for `cancel`. Stale handles are harmless.
-struct EventId {
-  std::uint32_t slot = 0xFFFFFFFFu;
-  std::uint64_t sequence = 0;
-  bool valid() const { return slot != 0xFFFFFFFFu; }
-};
-
 class Simulator {
  public:
-  Simulator();
+  Simulator() = default;
 
   /// Current simulated time: the time of the event being run (or the last run_until limit).
   Time now() const { return now_; }
@@ -30,16 +24,14 @@ class Simulator {
   template <class F>
   EventId after(Duration delay, F&& action) {
     MASNET_ASSERT(delay.count() >= 0, "negative delay: events cannot be scheduled in the past");
-    return schedule(now_ + delay, EventAction::make(std::forward<F>(action)));
+    return queue_.push(to_ns(now_ + delay), EventAction::make(std::forward<F>(action)));
   }
-
   /// Schedules `action` at absolute time `when`. Precondition: when >= now() (asserted).
   template <class F>
   EventId at(Time when, F&& action) {
     MASNET_ASSERT(when >= now_, "event scheduled before the current time");
-    return schedule(when, EventAction::make(std::forward<F>(action)));
+    return queue_.push(to_ns(when), EventAction::make(std::forward<F>(action)));
   }
-
   /// Cancels a pending event; returns false if it already ran or was cancelled.
   bool cancel(EventId id);
 
@@ -59,27 +51,18 @@ class Simulator {
   Fingerprint& fingerprint() { return fingerprint_; }
   const Fingerprint& fingerprint() const { return fingerprint_; }
 
-  /// Pre-sizes the queue and the action pool for `n` simultaneously pending events.
-  void reserve(std::size_t n);
+  /// Pre-sizes the queue for `n` simultaneously pending events.
+  void reserve(std::size_t n) { queue_.reserve(n); }
 
  private:
-  struct Slot {
-    EventAction action;
-    std::uint64_t sequence = 0;
-  };
-
-  EventId schedule(Time when, EventAction action);
   template <bool kBounded>
   std::uint64_t run_loop(std::int64_t limit_ns);
 
   Time now_ = kTimeZero;
-  std::uint64_t next_sequence_ = 0;
   std::uint64_t events_run_ = 0;
   std::size_t cancelled_pending_ = 0;
   bool stop_requested_ = false;
   EventQueue queue_;
-  std::vector<Slot> slots_;
-  std::vector<std::uint32_t> free_slots_;
   Fingerprint fingerprint_;
 };
 

@@ -1,0 +1,278 @@
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <vector>
+
+#include "net/radio.hpp"
+#include "sim/random.hpp"
+
+using namespace masnet;
+using net::Vec2;
+using sim::NodeId;
+
+namespace {
+
+// Records every frame handed over, with the receiver.
+struct Recorder : net::RadioListener {
+  struct Delivery {
+    NodeId receiver, source;
+    net::MessageType type;
+    double at_s;
+  };
+  sim::Simulator* sim = nullptr;
+  std::vector<Delivery> deliveries;
+  std::vector<NodeId> emptied;
+  void on_frame(NodeId receiver, const net::Frame& f) override {
+    deliveries.push_back({receiver, f.source, f.type, sim::to_seconds(sim->now())});
+  }
+  void on_battery_empty(NodeId node) override { emptied.push_back(node); }
+};
+
+// Mobile nodes moving on straight lines: p(t) = p0 + v·t.
+struct LinearMotion : net::MobilePositions {
+  const sim::Simulator* sim = nullptr;
+  std::map<std::uint32_t, std::pair<Vec2, Vec2>> lines;
+  Vec2 position(NodeId id) const override {
+    const auto& [p0, v] = lines.at(sim::index(id));
+    return p0 + sim::to_seconds(sim->now()) * v;
+  }
+  double speed_bound() const override {
+    double s = 0;
+    for (const auto& [id, line] : lines) s = std::max(s, line.second.norm());
+    return s;
+  }
+};
+
+net::Payload beacon(NodeId from) { return net::Beacon{from, Vec2{0, 0}}; }
+
+}  // namespace
+
+TEST_CASE("broadcast deliveries equal a brute-force range check, static and moving nodes",
+          "[net]") {
+  for (int layout = 0; layout < 20; ++layout) {
+    sim::Simulator sim;
+    net::RadioParams params;
+    params.max_range = 0.4;
+    net::Radio radio(sim, params, 1);
+    Recorder rec;
+    rec.sim = &sim;
+    LinearMotion motion;
+    motion.sim = &sim;
+    radio.set_listener(&rec);
+    radio.set_mobile_positions(&motion);
+    sim::RandomStream rng(static_cast<std::uint64_t>(layout));
+    const int n_static = 50 + 20 * layout, n_mobile = layout % 2 == 0 ? 10 : 60;  // both paths
+    for (int i = 0; i < n_static; ++i)
+      radio.add_static_node(sim::node_id(i), Vec2{rng.uniform01(), rng.uniform01()});
+    for (int i = 0; i < n_mobile; ++i) {
+      const auto id = static_cast<std::uint32_t>(n_static + i);
+      motion.lines[id] = {Vec2{rng.uniform01(), rng.uniform01()},
+                          Vec2{rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3)}};
+      radio.add_mobile_node(sim::node_id(id));
+    }
+    const int n = n_static + n_mobile;
+    // Expected receivers computed by brute force at each send time.
+    std::multiset<std::pair<std::uint32_t, std::uint32_t>> expected;
+    auto send = [&](std::uint32_t src, double range) {
+      const Vec2 p = radio.position(sim::node_id(src));
+      const double r = std::min(range, params.max_range);
+      for (int j = 0; j < n; ++j) {
+        if (static_cast<std::uint32_t>(j) == src) continue;
+        if ((radio.position(sim::node_id(j)) - p).norm() <= r) expected.insert({src, j});
+      }
+      radio.broadcast(sim::node_id(src), range, beacon(sim::node_id(src)));
+    };
+    for (int k = 0; k < 200; ++k) {
+      const double t = rng.uniform(0.0, 2.0);
+      const auto src = static_cast<std::uint32_t>(rng.below(static_cast<std::uint64_t>(n)));
+      const double range = rng.uniform(0.0, 0.6);  // sometimes above max_range
+      sim.at(sim::time_at(t), [&send, src, range] { send(src, range); });
+    }
+    sim.run();
+    std::multiset<std::pair<std::uint32_t, std::uint32_t>> got;
+    for (const auto& d : rec.deliveries) got.insert({sim::index(d.source), sim::index(d.receiver)});
+    REQUIRE(got == expected);
+  }
+}
+
+TEST_CASE("nothing is delivered beyond the range and the addressee of a unicast gets it",
+          "[net]") {
+  sim::Simulator sim;
+  net::RadioParams params;
+  params.max_range = 0.5;
+  net::Radio radio(sim, params, 1);
+  Recorder rec;
+  rec.sim = &sim;
+  radio.set_listener(&rec);
+  radio.add_static_node(sim::node_id(0), Vec2{0, 0});
+  radio.add_static_node(sim::node_id(1), Vec2{0.3, 0});
+  radio.add_static_node(sim::node_id(2), Vec2{0.3000001, 0});
+  radio.add_static_node(sim::node_id(3), Vec2{0.6, 0});  // beyond max_range from node 0
+  radio.broadcast(sim::node_id(0), 0.3, beacon(sim::node_id(0)));
+  radio.unicast(sim::node_id(0), sim::node_id(2), beacon(sim::node_id(0)));
+  radio.unicast(sim::node_id(0), sim::node_id(3), beacon(sim::node_id(0)));
+  sim.run();
+  REQUIRE(rec.deliveries.size() == 2);
+  CHECK(sim::index(rec.deliveries[0].receiver) == 1);  // broadcast reaches exactly range 0.3
+  CHECK(sim::index(rec.deliveries[1].receiver) == 2);  // unicast: only the addressee
+  // The unicast to node 2 is overheard by node 1; the one to node 3 (capped at 0.5) by 1 and 2.
+  CHECK(radio.stats(sim::node_id(1)).overheard_count == 2);
+  CHECK(radio.stats(sim::node_id(2)).overheard_count == 1);
+  CHECK(radio.stats(sim::node_id(0)).unreachable_count == 1);
+  CHECK(radio.counters(sim::node_id(0), net::MessageType::beacon).tx_count == 3);
+}
+
+TEST_CASE("the loss rate lies inside the binomial 99.9% interval", "[net]") {
+  for (double p : {0.1, 0.3, 0.5}) {
+    sim::Simulator sim;
+    net::RadioParams params;
+    params.loss = p;
+    params.level = net::RadioLevel::ideal;
+    net::Radio radio(sim, params, 77);
+    Recorder rec;
+    rec.sim = &sim;
+    radio.set_listener(&rec);
+    const int n = 101;
+    for (int i = 0; i < n; ++i)
+      radio.add_static_node(sim::node_id(i), Vec2{0.001 * i, 0});
+    const int frames = 200;
+    for (int k = 0; k < frames; ++k)
+      radio.broadcast(sim::node_id(k % n), 1.0, beacon(sim::node_id(k % n)));
+    sim.run();
+    const double trials = frames * (n - 1.0);
+    const double delivered = static_cast<double>(rec.deliveries.size());
+    const double lost_rate = 1.0 - delivered / trials;
+    const double sd = std::sqrt(p * (1 - p) / trials);
+    INFO("p = " << p << " observed " << lost_rate);
+    CHECK(std::fabs(lost_rate - p) <= 3.29 * sd);  // two-sided 99.9 %
+    std::uint64_t lost = 0;
+    for (int i = 0; i < n; ++i) lost += radio.stats(sim::node_id(i)).lost_count;
+    CHECK(static_cast<double>(lost) + delivered == trials);
+  }
+}
+
+TEST_CASE("delay is latency plus airtime, and a transmitter sends one frame at a time",
+          "[net]") {
+  sim::Simulator sim;
+  net::RadioParams params;
+  params.latency_s = 1e-4;
+  params.bitrate_bps = 1e5;
+  net::Radio radio(sim, params, 1);
+  Recorder rec;
+  rec.sim = &sim;
+  radio.set_listener(&rec);
+  radio.add_static_node(sim::node_id(0), Vec2{0, 0});
+  radio.add_static_node(sim::node_id(1), Vec2{0.1, 0});
+  radio.broadcast(sim::node_id(0), 0.2, beacon(sim::node_id(0)));
+  radio.broadcast(sim::node_id(0), 0.2, beacon(sim::node_id(0)));
+  sim.run();
+  const double bytes = params.sizes.header_bytes + params.sizes.id_bytes + params.sizes.position_bytes;
+  const double air = bytes * 8 / params.bitrate_bps;
+  REQUIRE(rec.deliveries.size() == 2);
+  CHECK(rec.deliveries[0].at_s == Approx(air + 1e-4).epsilon(1e-9));
+  CHECK(rec.deliveries[1].at_s == Approx(2 * air + 1e-4).epsilon(1e-9));
+}
+
+TEST_CASE("energy equals the first-order radio model, continuous at d0", "[net]") {
+  net::EnergyParams e;
+  const double d0 = e.crossover_m();
+  CHECK(d0 == Approx(std::sqrt(10.0 / 0.0013)));
+  const double k = 8.0 * 100;  // a 100-byte frame
+  // Hand-computed: 50 nJ/bit electronics; 10 pJ/bit/m² below d0; 0.0013 pJ/bit/m⁴ above.
+  CHECK(net::tx_energy_j(e, k, 50.0) == Approx(k * 50e-9 + k * 10e-12 * 2500.0).epsilon(1e-12));
+  CHECK(net::tx_energy_j(e, k, 100.0) == Approx(k * 50e-9 + k * 0.0013e-12 * 1e8).epsilon(1e-12));
+  CHECK(net::rx_energy_j(e, k) == Approx(k * 50e-9).epsilon(1e-12));
+  const double below = net::tx_energy_j(e, k, d0 * (1 - 1e-9));
+  const double at = net::tx_energy_j(e, k, d0);
+  CHECK(at == Approx(below).epsilon(1e-7));
+
+  // The radio books exactly these amounts: the sender pays E_tx at its range in metres, and
+  // every node in range pays E_rx, addressed or not.
+  sim::Simulator sim;
+  net::RadioParams params;
+  params.meters_per_unit = 100;
+  net::Radio radio(sim, params, 1);
+  radio.add_static_node(sim::node_id(0), Vec2{0, 0});
+  radio.add_static_node(sim::node_id(1), Vec2{0.5, 0});   // 50 m
+  radio.add_static_node(sim::node_id(2), Vec2{0.2, 0});   // overhears the unicast to node 1
+  radio.add_static_node(sim::node_id(3), Vec2{0.9, 0});   // out of range
+  radio.unicast(sim::node_id(0), sim::node_id(1), beacon(sim::node_id(0)));
+  sim.run();
+  const double bits = 8.0 * (params.sizes.header_bytes + params.sizes.id_bytes + params.sizes.position_bytes);
+  CHECK(radio.stats(sim::node_id(0)).energy_tx_j == Approx(bits * 50e-9 + bits * 10e-12 * 2500).epsilon(1e-12));
+  CHECK(radio.stats(sim::node_id(1)).energy_rx_j == Approx(bits * 50e-9).epsilon(1e-12));
+  CHECK(radio.stats(sim::node_id(2)).energy_rx_j == Approx(bits * 50e-9).epsilon(1e-12));
+  CHECK(radio.stats(sim::node_id(3)).energy_rx_j == 0.0);
+}
+
+TEST_CASE("a node whose battery empties stops sending and receiving", "[net]") {
+  sim::Simulator sim;
+  net::RadioParams params;
+  const double bits = 8.0 * (params.sizes.header_bytes + params.sizes.id_bytes + params.sizes.position_bytes);
+  const double tx = net::tx_energy_j(params.energy, bits, 0.1 * params.meters_per_unit);
+  params.energy.battery_j = 2.5 * tx;  // enough for two frames, not three
+  net::Radio radio(sim, params, 1);
+  Recorder rec;
+  rec.sim = &sim;
+  radio.set_listener(&rec);
+  radio.add_static_node(sim::node_id(0), Vec2{0, 0});
+  radio.add_static_node(sim::node_id(1), Vec2{0.1, 0});
+  CHECK(radio.broadcast(sim::node_id(0), 0.1, beacon(sim::node_id(0))));
+  CHECK(radio.broadcast(sim::node_id(0), 0.1, beacon(sim::node_id(0))));
+  CHECK_FALSE(radio.broadcast(sim::node_id(0), 0.1, beacon(sim::node_id(0))));
+  sim.run();
+  CHECK_FALSE(radio.alive(sim::node_id(0)));
+  REQUIRE(rec.emptied.size() == 1);
+  CHECK(rec.emptied[0] == sim::node_id(0));
+  CHECK(rec.deliveries.size() == 2);
+  CHECK(radio.energy_j(sim::node_id(0)) <= params.energy.battery_j);
+  // The dead node no longer hears anything, nor pays for it.
+  const double before = radio.energy_j(sim::node_id(0));
+  radio.broadcast(sim::node_id(1), 0.1, beacon(sim::node_id(1)));
+  sim.run();
+  CHECK(rec.deliveries.size() == 2);
+  CHECK(radio.energy_j(sim::node_id(0)) == before);
+}
+
+TEST_CASE("idle power empties a battery at the predicted time", "[net]") {
+  sim::Simulator sim;
+  net::RadioParams params;
+  params.energy.idle_power_w = 0.5;
+  params.energy.battery_j = 2.0;
+  net::Radio radio(sim, params, 1);
+  Recorder rec;
+  rec.sim = &sim;
+  radio.set_listener(&rec);
+  radio.add_static_node(sim::node_id(0), Vec2{0, 0});
+  sim.run_until(sim::time_at(10.0));
+  REQUIRE(rec.emptied.size() == 1);
+  CHECK(sim::to_seconds(radio.stats(sim::node_id(0)).died_at) == Approx(4.0));
+  CHECK(radio.energy_j(sim::node_id(0)) == Approx(2.0));
+}
+
+TEST_CASE("loss draws of one link do not depend on other nodes", "[net]") {
+  // Adding a node elsewhere must not change which receptions of an existing link are lost.
+  auto lost_pattern = [](int extra_nodes) {
+    sim::Simulator sim;
+    net::RadioParams params;
+    params.loss = 0.5;
+    net::Radio radio(sim, params, 5);
+    Recorder rec;
+    rec.sim = &sim;
+    radio.set_listener(&rec);
+    radio.add_static_node(sim::node_id(0), Vec2{0, 0});
+    radio.add_static_node(sim::node_id(1), Vec2{0.05, 0});
+    for (int i = 0; i < extra_nodes; ++i)
+      radio.add_static_node(sim::node_id(2 + i), Vec2{0.01 * i, 0.02});
+    std::vector<double> got;
+    for (int k = 0; k < 64; ++k) radio.broadcast(sim::node_id(0), 0.1, beacon(sim::node_id(0)));
+    sim.run();
+    for (const auto& d : rec.deliveries)
+      if (d.receiver == sim::node_id(1)) got.push_back(d.at_s);
+    return got;
+  };
+  CHECK(lost_pattern(0) == lost_pattern(7));
+}
