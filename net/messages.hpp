@@ -9,6 +9,7 @@
 
 #include "net/vec2.hpp"
 #include "sim/ids.hpp"
+#include "sim/time.hpp"
 
 namespace masnet::net {
 
@@ -80,6 +81,19 @@ struct MessageSizes {
   std::uint32_t radius_bytes = 4;       ///< one 32-bit radius
   std::uint32_t vertex_bytes = 8;       ///< one polygon vertex
   std::uint32_t counter_bytes = 2;      ///< an update counter
+};
+
+/// A frame on the air. Broadcasts share one Frame among all their receivers.
+struct Frame {
+  NodeId source = sim::kNoNode;
+  NodeId destination = sim::kNoNode;  ///< kNoNode for a broadcast
+  MessageType type = MessageType::beacon;
+  std::uint32_t size_bytes = 0;
+  double range = 0.0;  ///< world units, after the max_range cap
+  sim::Time sent_at{};
+  Payload payload;
+
+  bool is_broadcast() const { return destination == sim::kNoNode; }
 };
 
 /// Size on the air of a frame carrying `payload`.

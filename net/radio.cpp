@@ -9,8 +9,6 @@ namespace masnet::net {
 namespace {
 constexpr std::uint64_t kLossPurpose = sim::purpose("radio.loss");
 constexpr std::uint64_t kJitterPurpose = sim::purpose("radio.jitter");
-// Below this many mobile nodes a linear scan beats maintaining a grid.
-constexpr std::size_t kMobileScanLimit = 32;
 }  // namespace
 
 Radio::Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t seed)
@@ -20,10 +18,11 @@ Radio::Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t
                 "radio parameters are validated by the scenario loader");
 }
 
-void Radio::add_static_node(NodeId id, const Vec2& position) {
+void Radio::add_static_node(NodeId id, const Vec2& position, std::uint64_t random_key) {
   MASNET_ASSERT(sim::index(id) == nodes_.size(), "node ids are dense from 0");
   nodes_.push_back(Node{});
   nodes_.back().position = position;
+  nodes_.back().random_key = random_key;
   nodes_.back().idle_accounted_to = simulator_.now();
   counters_.resize(nodes_.size() * kMessageTypeCount);
   static_ids_.push_back(id);
@@ -32,10 +31,11 @@ void Radio::add_static_node(NodeId id, const Vec2& position) {
   if (params_.energy.battery_j > 0 && params_.energy.idle_power_w > 0) schedule_depletion(id);
 }
 
-void Radio::add_mobile_node(NodeId id) {
+void Radio::add_mobile_node(NodeId id, std::uint64_t random_key) {
   MASNET_ASSERT(sim::index(id) == nodes_.size(), "node ids are dense from 0");
   nodes_.push_back(Node{});
   nodes_.back().mobile = true;
+  nodes_.back().random_key = random_key;
   nodes_.back().idle_accounted_to = simulator_.now();
   counters_.resize(nodes_.size() * kMessageTypeCount);
   mobile_ids_.push_back(id);
@@ -88,22 +88,11 @@ void Radio::prepare_mobile_index() {
 template <class Visit>
 void Radio::for_each_node_within(NodeId source, const Vec2& center, double range, Visit&& visit) {
   if (static_index_dirty_) prepare_static_index();
-  const double r2 = range * range;
   static_grid_.for_each_within(center, range, [&](NodeId id, const Vec2&, double) {
     if (id != source) visit(id);
   });
-  if (mobile_ids_.empty()) return;
-  if (mobile_ids_.size() <= kMobileScanLimit) {
-    for (NodeId id : mobile_ids_)
-      if (id != source && (mobile_->position(id) - center).squaredNorm() <= r2) visit(id);
-    return;
-  }
-  // The index may be stale: widen the search by how far any node can have moved since it
-  // was built, then check each candidate at its true position now.
-  prepare_mobile_index();
-  const double margin = margin_speed_ * sim::to_seconds(simulator_.now() - mobile_index_time_);
-  mobile_grid_.for_each_within(center, range + margin, [&](NodeId id, const Vec2&, double) {
-    if (id != source && (mobile_->position(id) - center).squaredNorm() <= r2) visit(id);
+  for_each_mobile_within(center, range, [&](NodeId id) {
+    if (id != source) visit(id);
   });
 }
 
@@ -133,6 +122,7 @@ bool Radio::charge(NodeId id, double energy_j, bool is_tx) {
     }
   }
   (is_tx ? s.energy_tx_j : s.energy_rx_j) += energy_j;
+  (is_tx ? total_tx_j_ : total_rx_j_) += energy_j;
   if (params_.energy.battery_j > 0 && params_.energy.idle_power_w > 0) schedule_depletion(id);
   return true;
 }
@@ -178,6 +168,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   TypeCounters& tx = counters_[sim::index(source) * kMessageTypeCount + static_cast<std::size_t>(type)];
   ++tx.tx_count;
   tx.tx_bytes += bytes;
+  ++totals_[static_cast<std::size_t>(type)].tx_count;
+  totals_[static_cast<std::size_t>(type)].tx_bytes += bytes;
   const std::uint64_t frame_number = src.frames_sent++;
 
   const sim::Time now = simulator_.now();
@@ -202,7 +194,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
       return;
     }
     if (params_.loss > 0 &&
-        sim::keyed_uniform01(seed_, kLossPurpose, sim::index(source), sim::index(id),
+        sim::keyed_uniform01(seed_, kLossPurpose, src.random_key, node.random_key,
                              frame_number) < params_.loss) {
       ++node.stats.lost_count;
       return;
@@ -211,6 +203,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
         counters_[sim::index(id) * kMessageTypeCount + static_cast<std::size_t>(type)];
     ++rx.rx_count;
     rx.rx_bytes += bytes;
+    ++totals_[static_cast<std::size_t>(type)].rx_count;
+    totals_[static_cast<std::size_t>(type)].rx_bytes += bytes;
     if (node.interest & type_bit) receivers.push_back(id);
   };
 
@@ -257,8 +251,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   } else {
     f.pending = static_cast<std::uint32_t>(f.receivers.size());
     for (NodeId id : f.receivers) {
-      const double u = sim::keyed_uniform01(seed_, kJitterPurpose, sim::index(source),
-                                            sim::index(id), frame_number);
+      const double u = sim::keyed_uniform01(seed_, kJitterPurpose, src.random_key,
+                                            nodes_[sim::index(id)].random_key, frame_number);
       simulator_.at(arrival + sim::seconds(u * params_.jitter_s),
                     [this, flight, id] { deliver_one(flight, id); });
     }

@@ -3,6 +3,7 @@
 // unit-disk reception with a per-transmission range, delay = latency + airtime + jitter,
 // Bernoulli loss per reception, per-node counters by message type, and the energy ledger of
 // SPEC §4. It knows message formats, never protocol logic. See docs/radio-and-energy.md.
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <span>
@@ -30,19 +31,6 @@ struct RadioParams {
   double loss = 0.0;               ///< probability that a reception is lost
   EnergyParams energy;
   MessageSizes sizes;
-};
-
-/// A frame on the air. Broadcasts share one Frame among all their receivers.
-struct Frame {
-  NodeId source = sim::kNoNode;
-  NodeId destination = sim::kNoNode;  ///< kNoNode for a broadcast
-  MessageType type = MessageType::beacon;
-  std::uint32_t size_bytes = 0;
-  double range = 0.0;  ///< world units, after the max_range cap
-  sim::Time sent_at{};
-  Payload payload;
-
-  bool is_broadcast() const { return destination == sim::kNoNode; }
 };
 
 /// Receives frames and battery news for all nodes of one radio (the world implements it).
@@ -84,12 +72,17 @@ struct NodeRadioStats {
 
 class Radio {
  public:
+  /// Below this many mobile nodes a linear scan beats maintaining a grid.
+  static constexpr std::size_t kMobileScanLimit = 32;
+
   Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t seed);
 
   /// Registers node ids densely from 0: a static node at `position`, or a mobile node whose
   /// position `mobile_positions` answers.
-  void add_static_node(NodeId id, const Vec2& position);
-  void add_mobile_node(NodeId id);
+  /// `random_key` keys this node's loss and jitter draws; give a key that does not change
+  /// when other nodes are added (the world uses role and index).
+  void add_static_node(NodeId id, const Vec2& position, std::uint64_t random_key);
+  void add_mobile_node(NodeId id, std::uint64_t random_key);
   void set_listener(RadioListener* listener) { listener_ = listener; }
   void set_mobile_positions(const MobilePositions* positions) { mobile_ = positions; }
   /// Only message types in `mask` (bit = MessageType) are handed to `on_frame` at `node`;
@@ -108,11 +101,20 @@ class Radio {
   bool unicast(NodeId source, NodeId destination, Payload payload);
 
   Vec2 position(NodeId node) const;
+  /// Calls `visit(id)` for every mobile node within `range` of `center` now (ground truth
+  /// for recorders and the oracle; not a radio operation).
+  template <class Visit>
+  void for_each_mobile_within(const Vec2& center, double range, Visit&& visit);
   std::size_t node_count() const { return nodes_.size(); }
   const RadioParams& params() const { return params_; }
   const TypeCounters& counters(NodeId node, MessageType type) const {
     return counters_[sim::index(node) * kMessageTypeCount + static_cast<std::size_t>(type)];
   }
+  /// Frames by type over all nodes (tx: transmissions; rx: receptions by addressees).
+  const TypeCounters& totals(MessageType type) const { return totals_[static_cast<std::size_t>(type)]; }
+  /// Radio energy booked so far over all nodes (idle drain excluded), joules.
+  double total_tx_energy_j() const { return total_tx_j_; }
+  double total_rx_energy_j() const { return total_rx_j_; }
   /// Per-node stats with idle energy brought up to now.
   const NodeRadioStats& stats(NodeId node);
   double energy_j(NodeId node) {
@@ -130,6 +132,7 @@ class Radio {
     bool mobile = false;
     std::uint32_t interest = 0xFFFFFFFFu;
     std::uint64_t frames_sent = 0;
+    std::uint64_t random_key = 0;
     sim::Time busy_until{};
     sim::Time idle_accounted_to{};
     sim::EventId depletion_event;
@@ -163,6 +166,8 @@ class Radio {
 
   std::vector<Node> nodes_;
   std::vector<TypeCounters> counters_;
+  std::array<TypeCounters, kMessageTypeCount> totals_{};
+  double total_tx_j_ = 0.0, total_rx_j_ = 0.0;
   std::vector<NodeId> static_ids_, mobile_ids_;
   std::vector<Vec2> static_positions_;
   SpatialGrid static_grid_, mobile_grid_;
@@ -175,5 +180,23 @@ class Radio {
   std::vector<std::uint32_t> free_flights_;
   std::vector<NodeId> scratch_receivers_;
 };
+
+template <class Visit>
+void Radio::for_each_mobile_within(const Vec2& center, double range, Visit&& visit) {
+  if (mobile_ids_.empty()) return;
+  const double r2 = range * range;
+  if (mobile_ids_.size() <= kMobileScanLimit) {
+    for (NodeId id : mobile_ids_)
+      if ((mobile_->position(id) - center).squaredNorm() <= r2) visit(id);
+    return;
+  }
+  // The index may be stale: widen the search by how far any node can have moved since it
+  // was built, then check each candidate at its true position now.
+  prepare_mobile_index();
+  const double margin = margin_speed_ * sim::to_seconds(simulator_.now() - mobile_index_time_);
+  mobile_grid_.for_each_within(center, range + margin, [&](NodeId id, const Vec2&, double) {
+    if ((mobile_->position(id) - center).squaredNorm() <= r2) visit(id);
+  });
+}
 
 }  // namespace masnet::net

@@ -45,7 +45,11 @@ class RandomStream {
  public:
   /// The stream of `node` for `purpose_hash` in a run seeded with `seed`.
   static RandomStream keyed(std::uint64_t seed, NodeId node, std::uint64_t purpose_hash) {
-    return RandomStream(keyed_u64(seed, index(node), purpose_hash));
+    return keyed(seed, std::uint64_t{index(node)}, purpose_hash);
+  }
+  /// The same, for a caller-chosen node key (e.g. role and index, stable when nodes are added).
+  static RandomStream keyed(std::uint64_t seed, std::uint64_t node_key, std::uint64_t purpose_hash) {
+    return RandomStream(keyed_u64(seed, node_key, purpose_hash));
   }
   /// A stream from one raw 64-bit seed (splitmix64 expansion, the generator authors' advice).
   explicit RandomStream(std::uint64_t raw_seed);

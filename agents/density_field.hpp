@@ -1,0 +1,59 @@
+#pragma once
+// Density fields ρ(s, t) >= 0 sampled by the sensors (SPEC §2): acoustic targets (paper
+// eq. 3), Gaussian bumps, uniform. The diffusion PDE lives in diffusion_field.hpp and is
+// advanced by the world. See docs/field-models.md.
+#include <cstdint>
+#include <vector>
+
+#include "agents/targets.hpp"
+#include "net/vec2.hpp"
+
+namespace masnet::agents {
+
+enum class FieldKind { uniform, acoustic, gaussian, diffusion };
+
+struct GaussianBump {
+  PathDef path;  ///< where the centre is
+  double sigma = 0.1;
+  double amplitude = 1.0;
+};
+
+struct FieldDef {
+  FieldKind kind = FieldKind::uniform;
+  double uniform_value = 1.0;
+  // acoustic: ρ(s,t) = Σ_k a·max(‖p_k(t) − s‖, d_min)^(−α)
+  double amplitude = 1.0;     ///< a
+  double alpha = 2.0;         ///< α > 0
+  double min_distance = 0.0;  ///< d_min > 0 (the builder sets h/2 by default)
+  std::vector<PathDef> targets;
+  // gaussian: ρ(s,t) = Σ_b A_b exp(−‖s − c_b(t)‖² / (2σ_b²))
+  std::vector<GaussianBump> bumps;
+};
+
+/// Analytic fields. `value` is called for many sensors at one time, so target positions are
+/// cached per time.
+class AnalyticField {
+ public:
+  explicit AnalyticField(const FieldDef& def);
+
+  /// ρ(s, t). Counts readings clamped at d_min (acoustic).
+  double value(const Vec2& s, double t_s);
+  /// ρ(s, t) without touching the clamp counter (for metrics and figures).
+  double peek(const Vec2& s, double t_s);
+
+  std::uint64_t clamped_readings() const { return clamped_; }
+  const FieldDef& def() const { return def_; }
+  /// Positions of the moving entities (targets or bump centres) at t.
+  std::vector<Vec2> sources_at(double t_s) const;
+
+ private:
+  double evaluate(const Vec2& s, double t_s, bool count);
+  void move_to(double t_s);
+
+  FieldDef def_;
+  double cached_t_s_ = -1.0;
+  std::vector<Vec2> centres_;
+  std::uint64_t clamped_ = 0;
+};
+
+}  // namespace masnet::agents

@@ -1,0 +1,291 @@
+#include "agents/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "sim/random.hpp"
+
+namespace masnet::agents {
+namespace {
+
+// Random keys by role and index: stable when nodes of another role (or later ones) are added.
+std::uint64_t robot_key(std::size_t i) { return (std::uint64_t{1} << 32) | i; }
+std::uint64_t sensor_key(std::size_t i) { return (std::uint64_t{2} << 32) | i; }
+
+constexpr std::uint32_t bit(net::MessageType t) { return 1u << static_cast<unsigned>(t); }
+constexpr std::uint32_t kRobotInterest = bit(net::MessageType::discover) | bit(net::MessageType::neighbor) |
+                                         bit(net::MessageType::reading) | bit(net::MessageType::report);
+constexpr std::uint32_t kSensorInterest = bit(net::MessageType::position) | bit(net::MessageType::sense);
+
+double diameter(const protocols::ConvexPolygon& polygon) {
+  double d = 0.0;
+  for (const Vec2& a : polygon.vertices)
+    for (const Vec2& b : polygon.vertices) d = std::max(d, (a - b).norm());
+  return d;
+}
+
+}  // namespace
+
+// ---- A robot: body (closed-form motion) + protocol + its host interface ---------------------
+
+class World::RobotAgent final : public protocols::RobotHost {
+ public:
+  RobotAgent(World& world, std::size_t index, const Vec2& start, double phase_s)
+      : world_(world),
+        index_(index),
+        segment_(world.def_.motion, 0.0, MotionState{start, Vec2{0, 0}}, start),
+        protocol_(*this, world.def_.protocol, world.protocol_context_, phase_s) {}
+
+  protocols::VoronoiProtocol& protocol() { return protocol_; }
+  const protocols::VoronoiProtocol& protocol() const { return protocol_; }
+  const MotionSegment& segment() const { return segment_; }
+
+  /// State now; cached per simulated instant (many frames are sent at the same time).
+  MotionState state() const {
+    const sim::Time now = world_.simulator_.now();
+    if (!cache_valid_ || cached_at_ != now) {
+      cached_ = segment_.state_at(sim::to_seconds(now));
+      cached_at_ = now;
+      cache_valid_ = true;
+    }
+    return cached_;
+  }
+
+  // protocols::RobotHost
+  sim::Time now() const override { return world_.simulator_.now(); }
+  NodeId id() const override { return world_.robot_node(index_); }
+  Vec2 position() const override { return state().position; }
+  std::uint32_t broadcast(double range, net::Payload payload) override {
+    const std::uint32_t bytes = net::size_bytes(payload, world_.radio_.params().sizes);
+    return world_.radio_.broadcast(id(), range, std::move(payload)) ? bytes : 0;
+  }
+  std::uint32_t unicast(NodeId to, net::Payload payload) override {
+    const std::uint32_t bytes = net::size_bytes(payload, world_.radio_.params().sizes);
+    return world_.radio_.unicast(id(), to, std::move(payload)) ? bytes : 0;
+  }
+  protocols::TimerHandle set_timer(sim::Duration delay, std::uint32_t kind) override {
+    return world_.simulator_.after(delay, [this, kind] { protocol_.on_timer(kind); });
+  }
+  void cancel_timer(protocols::TimerHandle timer) override { world_.simulator_.cancel(timer); }
+  void set_target(const Vec2& target) override {
+    // A new centroid starts a new closed-form segment from the current state.
+    const MotionState now_state = state();
+    segment_ = MotionSegment(world_.def_.motion, sim::to_seconds(now()), now_state, target);
+    cache_valid_ = false;
+    world_.radio_.raise_speed_bound(segment_.speed_bound());
+  }
+  void update_finished(const protocols::UpdateRecord& record) override {
+    world_.simulator_.fingerprint().mix(sim::bits_of(record.centroid.x()));
+    world_.simulator_.fingerprint().mix(sim::bits_of(record.centroid.y()));
+    if (world_.observer_) world_.observer_->on_update(index_, record);
+  }
+  double sensor_area(NodeId sensor) const override {
+    return world_.def_.sensors[sim::index(sensor) - world_.robots_.size()].area;
+  }
+  protocols::RobotCell true_cell() override { return world_.oracle_cell(index_); }
+  std::uint32_t read_sensors_in(const protocols::ConvexPolygon& cell,
+                                protocols::CentroidAccumulator& accumulator) override {
+    return world_.read_sensors_in(cell, accumulator);
+  }
+
+ private:
+  World& world_;
+  std::size_t index_;
+  MotionSegment segment_;
+  protocols::VoronoiProtocol protocol_;
+  mutable bool cache_valid_ = false;
+  mutable sim::Time cached_at_{};
+  mutable MotionState cached_;
+};
+
+// ---- A sensor's host: made on the stack per event; the state lives in arrays ---------------
+
+class World::SensorContext final : public protocols::SensorHost {
+ public:
+  SensorContext(World& world, std::size_t sensor) : world_(world), sensor_(sensor) {}
+  NodeId id() const override { return world_.sensor_node(sensor_); }
+  Vec2 position() const override { return world_.def_.sensors[sensor_].position; }
+  double reading() override { return world_.sensor_reading(sensor_); }
+  std::uint32_t unicast(NodeId to, net::Payload payload) override {
+    const std::uint32_t bytes = net::size_bytes(payload, world_.radio_.params().sizes);
+    return world_.radio_.unicast(id(), to, std::move(payload)) ? bytes : 0;
+  }
+  void set_timer(sim::Duration delay, std::uint32_t kind) override {
+    World* world = &world_;
+    const std::size_t sensor = sensor_;
+    world_.simulator_.after(delay, [world, sensor, kind] { world->sensor_timer(sensor, kind); });
+  }
+
+ private:
+  World& world_;
+  std::size_t sensor_;
+};
+
+// ---- The world -------------------------------------------------------------------------------
+
+World::World(sim::Simulator& simulator, const WorldDef& def)
+    : simulator_(simulator),
+      def_(def),
+      radio_(simulator, def.radio, def.seed),
+      field_(def.field),
+      protocol_context_{def.domain, def.scaling, def.radio.max_range},
+      // Sensors listen for POSITIONs one reply timeout before they report (§III-B step 2-3).
+      sensor_protocol_(def.protocol.reply_timeout_s) {
+  radio_.set_listener(this);
+  radio_.set_mobile_positions(this);
+  robots_.reserve(def_.robots.size());
+  for (std::size_t i = 0; i < def_.robots.size(); ++i) {
+    auto phase = sim::RandomStream::keyed(def_.seed, robot_key(i), sim::purpose("protocol.phase"));
+    robots_.push_back(std::make_unique<RobotAgent>(*this, i, def_.robots[i],
+                                                   phase.uniform(0.0, def_.protocol.period_s)));
+    radio_.add_mobile_node(robot_node(i), robot_key(i));
+    radio_.set_interest(robot_node(i), kRobotInterest);
+  }
+  std::vector<Vec2> positions;
+  std::vector<NodeId> ids;
+  for (std::size_t s = 0; s < def_.sensors.size(); ++s) {
+    radio_.add_static_node(sensor_node(s), def_.sensors[s].position, sensor_key(s));
+    radio_.set_interest(sensor_node(s), kSensorInterest);
+    positions.push_back(def_.sensors[s].position);
+    ids.push_back(sensor_node(s));
+  }
+  sensor_grid_.build(positions, ids);
+  sensor_states_.assign(def_.sensors.size(), protocols::SensorState{});
+  sensor_read_counts_.assign(def_.sensors.size(), 0);
+}
+
+World::~World() = default;
+
+void World::start() {
+  for (auto& robot : robots_) {
+    RobotAgent* agent = robot.get();
+    simulator_.after(sim::Duration{0}, [agent] { agent->protocol().start(); });
+  }
+  const BeaconDef& b = def_.beacons;
+  if (b.senders == BeaconSenders::none) return;
+  auto schedule = [&](NodeId node, std::uint64_t key) {
+    auto phase = sim::RandomStream::keyed(def_.seed, key, sim::purpose("beacon.phase"));
+    simulator_.after(sim::seconds(phase.uniform(0.0, b.period_s)), [this, node] { send_beacon(node); });
+  };
+  if (b.senders == BeaconSenders::robots || b.senders == BeaconSenders::all)
+    for (std::size_t i = 0; i < robots_.size(); ++i) schedule(robot_node(i), robot_key(i));
+  if (b.senders == BeaconSenders::sensors || b.senders == BeaconSenders::all)
+    for (std::size_t s = 0; s < def_.sensors.size(); ++s) schedule(sensor_node(s), sensor_key(s));
+}
+
+void World::send_beacon(NodeId node) {
+  radio_.broadcast(node, def_.beacons.range, net::Beacon{node, position(node)});
+  simulator_.after(sim::seconds(def_.beacons.period_s), [this, node] { send_beacon(node); });
+}
+
+MotionState World::robot_state(std::size_t robot) const { return robots_[robot]->state(); }
+Vec2 World::robot_target(std::size_t robot) const { return robots_[robot]->segment().target(); }
+const protocols::VoronoiProtocol& World::robot_protocol(std::size_t robot) const {
+  return robots_[robot]->protocol();
+}
+
+std::vector<Vec2> World::source_positions() const {
+  return field_.sources_at(sim::to_seconds(simulator_.now()));
+}
+
+double World::true_density(std::size_t sensor) {
+  return field_.peek(def_.sensors[sensor].position, sim::to_seconds(simulator_.now()));
+}
+
+double World::sensor_reading(std::size_t sensor) {
+  ++readings_taken_;
+  double value = field_.value(def_.sensors[sensor].position, sim::to_seconds(simulator_.now()));
+  if (def_.sensor_noise_sigma > 0.0) {
+    // Box-Muller from two keyed draws: the n-th reading of a sensor has fixed noise.
+    const std::uint64_t n = sensor_read_counts_[sensor]++;
+    const std::uint64_t key = sensor_key(sensor), purpose = sim::purpose("sensor.noise");
+    const double u1 = sim::keyed_uniform01(def_.seed, purpose, key, n, 0);
+    const double u2 = sim::keyed_uniform01(def_.seed, purpose, key, n, 1);
+    value += def_.sensor_noise_sigma * std::sqrt(-2.0 * std::log(1.0 - u1)) *
+             std::cos(2.0 * std::numbers::pi * u2);
+  }
+  return value;
+}
+
+protocols::RobotCell World::oracle_cell(std::size_t robot) {
+  const Vec2 p = robot_state(robot).position;
+  const double span = diameter(def_.domain);
+  // Cortés' rule with true positions: neighbours within r certify the cell once r >= 2·(farthest
+  // vertex); start from a radius that suits a uniform spread and double.
+  double r = std::max(2.0 * span / std::sqrt(static_cast<double>(robots_.size())), 1e-6);
+  std::vector<Vec2> sites;
+  std::vector<NodeId> site_nodes;
+  std::vector<std::uint32_t> candidates;
+  protocols::Cell cell;
+  for (;;) {
+    sites.assign(1, p);
+    site_nodes.assign(1, robot_node(robot));
+    radio_.for_each_mobile_within(p, r, [&](NodeId id) {
+      if (id == robot_node(robot)) return;
+      sites.push_back(robots_[sim::index(id)]->state().position);
+      site_nodes.push_back(id);
+    });
+    candidates.clear();
+    for (std::uint32_t i = 1; i < sites.size(); ++i) candidates.push_back(i);
+    cell = protocols::voronoi_cell(0, sites, candidates, def_.domain);
+    if (r >= 2.0 * protocols::max_vertex_distance(cell.polygon, p) || r >= span) break;
+    r *= 2.0;
+  }
+  protocols::RobotCell out;
+  out.polygon = std::move(cell.polygon);
+  for (std::uint32_t i : cell.neighbours) out.neighbours.push_back(site_nodes[i]);
+  std::sort(out.neighbours.begin(), out.neighbours.end());
+  return out;
+}
+
+std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
+                                     protocols::CentroidAccumulator& accumulator) {
+  if (cell.empty()) return 0;
+  Vec2 lo = cell.vertices[0], hi = cell.vertices[0];
+  for (const Vec2& v : cell.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  std::uint32_t inside = 0;
+  const std::size_t first_sensor = robots_.size();
+  sensor_grid_.for_each_within(0.5 * (lo + hi), 0.5 * (hi - lo).norm(), [&](NodeId id, const Vec2& s, double) {
+    if (!protocols::contains(cell, s)) return;
+    const std::size_t sensor = sim::index(id) - first_sensor;
+    accumulator.add(s, sensor_reading(sensor), def_.sensors[sensor].area);
+    ++inside;
+  });
+  return inside;
+}
+
+void World::on_frame(NodeId receiver, const net::Frame& frame) {
+  const std::size_t i = sim::index(receiver);
+  if (i < robots_.size()) {
+    robots_[i]->protocol().on_frame(frame);
+    return;
+  }
+  SensorContext context(*this, i - robots_.size());
+  sensor_protocol_.on_frame(context, sensor_states_[i - robots_.size()], frame);
+}
+
+void World::sensor_timer(std::size_t sensor, std::uint32_t kind) {
+  SensorContext context(*this, sensor);
+  sensor_protocol_.on_timer(context, sensor_states_[sensor], kind);
+}
+
+void World::on_battery_empty(NodeId node) {
+  if (observer_) observer_->on_battery_empty(node);
+}
+
+Vec2 World::position(NodeId node) const {
+  const std::size_t i = sim::index(node);
+  return i < robots_.size() ? robots_[i]->state().position : def_.sensors[i - robots_.size()].position;
+}
+
+double World::speed_bound() const {
+  double bound = 0.0;
+  for (const auto& robot : robots_) bound = std::max(bound, robot->segment().speed_bound());
+  return bound;
+}
+
+}  // namespace masnet::agents

@@ -1,0 +1,126 @@
+#pragma once
+// The world: sensors, robots, targets, the density field and the radio, owned together and
+// wired to the protocols through RobotHost / SensorHost. It knows nothing of files: a builder
+// in scenarios/ fills a WorldDef, and recorders in scenarios/ observe through a WorldObserver
+// and the read-only accessors (STYLE: output is never written from inside the model).
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "agents/density_field.hpp"
+#include "agents/diffusion_field.hpp"
+#include "agents/robot_motion.hpp"
+#include "net/radio.hpp"
+#include "protocols/sensor_protocol.hpp"
+#include "protocols/voronoi_protocol.hpp"
+#include "sim/simulator.hpp"
+
+namespace masnet::agents {
+
+using sim::NodeId;
+
+struct SensorDef {
+  Vec2 position{0, 0};
+  double area = 0.0;  ///< the part of Ω this sensor stands for (world units²)
+};
+
+/// Periodic BEACON traffic (the demo scenario): every sender broadcasts once per period at a
+/// seeded phase.
+enum class BeaconSenders { none, robots, sensors, all };
+struct BeaconDef {
+  BeaconSenders senders = BeaconSenders::none;
+  double period_s = 1.0;
+  double range = 0.2;  ///< world units
+};
+
+struct WorldDef {
+  std::uint64_t seed = 1;
+  protocols::ConvexPolygon domain;
+  std::vector<SensorDef> sensors;
+  std::vector<Vec2> robots;  ///< initial positions (at rest)
+  MotionParams motion;
+  FieldDef field;
+  double sensor_noise_sigma = 0.0;  ///< additive Gaussian noise on every reading
+  net::RadioParams radio;
+  protocols::ProtocolParams protocol;
+  protocols::DensityScaling scaling;
+  BeaconDef beacons;
+};
+
+/// Hooks for recorders.
+class WorldObserver {
+ public:
+  virtual ~WorldObserver() = default;
+  virtual void on_update(std::size_t /*robot*/, const protocols::UpdateRecord& /*record*/) {}
+  virtual void on_battery_empty(NodeId /*node*/) {}
+};
+
+class World final : public net::RadioListener, public net::MobilePositions {
+ public:
+  /// Node ids: robots 0..R-1, then sensors R..R+S-1. Random streams are keyed by role and
+  /// index, so adding a robot or a sensor never changes another node's draws.
+  World(sim::Simulator& simulator, const WorldDef& def);
+  ~World() override;
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  /// Schedules the start of every protocol and beacon at the current time.
+  void start();
+  void set_observer(WorldObserver* observer) { observer_ = observer; }
+
+  // ---- Read-only views for recorders -------------------------------------------------------
+  const WorldDef& def() const { return def_; }
+  sim::Simulator& simulator() { return simulator_; }
+  net::Radio& radio() { return radio_; }
+  std::size_t robot_count() const { return robots_.size(); }
+  std::size_t sensor_count() const { return def_.sensors.size(); }
+  NodeId robot_node(std::size_t robot) const { return sim::node_id(static_cast<std::uint32_t>(robot)); }
+  NodeId sensor_node(std::size_t sensor) const {
+    return sim::node_id(static_cast<std::uint32_t>(robots_.size() + sensor));
+  }
+  bool is_robot(NodeId node) const { return sim::index(node) < robots_.size(); }
+  /// Position and velocity of a robot now.
+  MotionState robot_state(std::size_t robot) const;
+  Vec2 robot_target(std::size_t robot) const;
+  const protocols::VoronoiProtocol& robot_protocol(std::size_t robot) const;
+  /// ρ at a sensor now, noiseless and without counting (metrics, figures).
+  double true_density(std::size_t sensor);
+  /// The exact Voronoi cell of `robot` among the true robot positions now.
+  protocols::RobotCell oracle_cell(std::size_t robot);
+  /// Positions of the field's moving entities now (targets, bump centres).
+  std::vector<Vec2> source_positions() const;
+  std::uint64_t clamped_readings() const { return field_.clamped_readings(); }
+  std::uint64_t sensor_readings() const { return readings_taken_; }
+
+  // ---- net::RadioListener, net::MobilePositions --------------------------------------------
+  void on_frame(NodeId receiver, const net::Frame& frame) override;
+  void on_battery_empty(NodeId node) override;
+  Vec2 position(NodeId node) const override;
+  double speed_bound() const override;
+
+ private:
+  class RobotAgent;
+  class SensorContext;
+
+  double sensor_reading(std::size_t sensor);
+  std::uint32_t read_sensors_in(const protocols::ConvexPolygon& cell,
+                                protocols::CentroidAccumulator& accumulator);
+  void sensor_timer(std::size_t sensor, std::uint32_t kind);
+  void send_beacon(NodeId node);
+
+  sim::Simulator& simulator_;
+  WorldDef def_;
+  net::Radio radio_;
+  AnalyticField field_;
+  protocols::ProtocolContext protocol_context_;
+  protocols::SensorProtocol sensor_protocol_;
+  std::vector<std::unique_ptr<RobotAgent>> robots_;
+  std::vector<protocols::SensorState> sensor_states_;
+  std::vector<std::uint32_t> sensor_read_counts_;  // keys the noise draws
+  net::SpatialGrid sensor_grid_;
+  std::uint64_t readings_taken_ = 0;
+  WorldObserver* observer_ = nullptr;
+};
+
+}  // namespace masnet::agents

@@ -1,0 +1,92 @@
+#pragma once
+// The narrow interface through which a protocol state machine touches the world (STYLE:
+// ARGoS controllers see only sensors and actuators). A test drives a protocol with a fake
+// host and no radio; the world implements it for real robots and sensors.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "net/messages.hpp"
+#include "net/vec2.hpp"
+#include "protocols/geometry.hpp"
+#include "protocols/lloyd.hpp"
+#include "sim/simulator.hpp"
+
+namespace masnet::protocols {
+
+using net::NodeId;
+using net::Vec2;
+
+/// A protocol's own timer, returned to it through on_timer(kind).
+using TimerHandle = sim::EventId;
+
+/// Messages of one kind attributed to one update (sent by the robot or received by it).
+struct MessageTally {
+  std::uint64_t count = 0, bytes = 0;
+};
+
+/// What one Voronoi update did (SPEC §5.4). Recorders judge it (e.g. cell correctness).
+struct UpdateRecord {
+  NodeId robot = sim::kNoNode;
+  std::uint32_t update = 0;   ///< the robot's update counter, from 1
+  sim::Time started{}, finished{};
+  std::uint32_t rounds = 0;   ///< DISCOVER rounds (0 for the oracle)
+  double radius = 0.0;        ///< R at the end of the update (before range decay)
+  bool truncated = false;     ///< R was capped at max_range before the stop rule held
+  bool delayed = false;       ///< started late because the previous update was still running
+  bool no_mass = false;       ///< no positive reading in the cell: target kept
+  Vec2 position{0, 0};        ///< the robot's position the cell was computed for
+  ConvexPolygon cell;         ///< the cell the robot computed
+  std::vector<NodeId> neighbours;  ///< robots whose bisectors bound the cell, ascending
+  Vec2 centroid{0, 0};        ///< the new target (or the kept one)
+  std::uint32_t readings = 0; ///< readings inside the cell used for the centroid
+  std::array<MessageTally, net::kMessageTypeCount> messages{};
+};
+
+/// A cell with its bounding robots named by node id.
+struct RobotCell {
+  ConvexPolygon polygon;
+  std::vector<NodeId> neighbours;  ///< ascending
+};
+
+/// The world as a robot's protocol sees it.
+class RobotHost {
+ public:
+  virtual ~RobotHost() = default;
+  virtual sim::Time now() const = 0;
+  virtual NodeId id() const = 0;
+  /// Own position now (world units).
+  virtual Vec2 position() const = 0;
+  /// Sends; returns the frame size in bytes, 0 if the radio refused (battery empty).
+  virtual std::uint32_t broadcast(double range, net::Payload payload) = 0;
+  virtual std::uint32_t unicast(NodeId to, net::Payload payload) = 0;
+  /// Calls the protocol's on_timer(kind) after `delay`.
+  virtual TimerHandle set_timer(sim::Duration delay, std::uint32_t kind) = 0;
+  virtual void cancel_timer(TimerHandle timer) = 0;
+  /// The control target c of p̈ = −k(p − c) − k_v ṗ.
+  virtual void set_target(const Vec2& target) = 0;
+  virtual void update_finished(const UpdateRecord& record) = 0;
+  /// The area A(s) a sensor stands for (deployment knowledge, not a message).
+  virtual double sensor_area(NodeId sensor) const = 0;
+
+  // Ground truth for the `oracle` protocol only (zero messages by definition).
+  /// The exact Voronoi cell of this robot among the true robot positions now.
+  virtual RobotCell true_cell() = 0;
+  /// Adds every sensor inside `cell` with its reading now to `accumulator`; returns how many.
+  virtual std::uint32_t read_sensors_in(const ConvexPolygon& cell, CentroidAccumulator& accumulator) = 0;
+};
+
+/// The world as a sensor's protocol sees it.
+class SensorHost {
+ public:
+  virtual ~SensorHost() = default;
+  virtual NodeId id() const = 0;
+  virtual Vec2 position() const = 0;
+  /// This sensor's measurement of ρ now.
+  virtual double reading() = 0;
+  virtual std::uint32_t unicast(NodeId to, net::Payload payload) = 0;
+  /// Calls SensorProtocol::on_timer for this sensor after `delay`.
+  virtual void set_timer(sim::Duration delay, std::uint32_t kind) = 0;
+};
+
+}  // namespace masnet::protocols

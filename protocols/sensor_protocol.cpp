@@ -1,0 +1,32 @@
+#include "protocols/sensor_protocol.hpp"
+
+namespace masnet::protocols {
+
+void SensorProtocol::on_frame(SensorHost& host, SensorState& state, const net::Frame& frame) const {
+  if (const auto* sense = std::get_if<net::Sense>(&frame.payload)) {
+    // Answer only if this sensor lies inside the robot's cell (boundary included).
+    const ConvexPolygon cell{sense->cell};
+    if (contains(cell, host.position()))
+      host.unicast(sense->robot, net::Reading{host.id(), sense->update, host.position(), host.reading()});
+  } else if (const auto* position = std::get_if<net::Position>(&frame.payload)) {
+    // 2: each sensor finds its closest robot (ties: the lower id).
+    const double d2 = (position->position - host.position()).squaredNorm();
+    if (d2 < state.closest_distance2 ||
+        (d2 == state.closest_distance2 && position->robot < state.closest_robot)) {
+      state.closest_distance2 = d2;
+      state.closest_robot = position->robot;
+    }
+    if (!state.report_scheduled) {
+      state.report_scheduled = true;
+      host.set_timer(sim::seconds(report_delay_s_), kReport);
+    }
+  }
+}
+
+void SensorProtocol::on_timer(SensorHost& host, SensorState& state, std::uint32_t kind) const {
+  // 3: each sensor sends its position and measurement to its closest robot.
+  if (kind == kReport && state.closest_robot != sim::kNoNode)
+    host.unicast(state.closest_robot, net::Report{host.id(), host.position(), host.reading()});
+}
+
+}  // namespace masnet::protocols

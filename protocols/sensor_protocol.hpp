@@ -1,0 +1,33 @@
+#pragma once
+// What a static sensor does (paper §III-B): keep the closest robot it heard and report to it
+// once at the beginning, and answer a robot's SENSE with its reading when it lies inside the
+// robot's cell. One shared, stateless object serves every sensor; the per-sensor state is a
+// small struct the world stores in an array (10⁶ sensors must stay cheap).
+#include <cstdint>
+#include <limits>
+
+#include "protocols/host.hpp"
+
+namespace masnet::protocols {
+
+struct SensorState {
+  NodeId closest_robot = sim::kNoNode;
+  double closest_distance2 = std::numeric_limits<double>::infinity();
+  bool report_scheduled = false;
+};
+
+class SensorProtocol {
+ public:
+  enum Timer : std::uint32_t { kReport = 1 };
+
+  /// `report_delay_s`: how long a sensor listens for POSITIONs before it reports.
+  explicit SensorProtocol(double report_delay_s) : report_delay_s_(report_delay_s) {}
+
+  void on_frame(SensorHost& host, SensorState& state, const net::Frame& frame) const;
+  void on_timer(SensorHost& host, SensorState& state, std::uint32_t kind) const;
+
+ private:
+  double report_delay_s_;
+};
+
+}  // namespace masnet::protocols

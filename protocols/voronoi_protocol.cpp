@@ -1,0 +1,260 @@
+#include "protocols/voronoi_protocol.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace masnet::protocols {
+
+VoronoiProtocol::VoronoiProtocol(RobotHost& host, const ProtocolParams& params,
+                                 const ProtocolContext& context, double phase_s)
+    : host_(host), params_(params), context_(context), phase_s_(phase_s) {
+  switch (params_.kind) {
+    case ProtocolKind::fixed_radius: radius_m_ = std::min(params_.fixed_radius, context_.max_range); break;
+    case ProtocolKind::gabriel: radius_m_ = context_.max_range; break;
+    default: radius_m_ = params_.decay.min; break;
+  }
+}
+
+// ---- Initialisation (paper §III-B, "at the beginning") --------------------------------------
+
+void VoronoiProtocol::start() {
+  last_target_ = host_.position();
+  if (params_.kind == ProtocolKind::none) return;
+  if (params_.kind != ProtocolKind::radius_doubling) {  // only R_i needs initialising
+    schedule_ticks();
+    return;
+  }
+  phase_ = Phase::initialising;
+  announce_position();
+  // Sensors report one reply_timeout after the first POSITION they hear; allow them another two.
+  host_.set_timer(sim::seconds(3.0 * params_.reply_timeout_s), kInitEnd);
+}
+
+void VoronoiProtocol::announce_position() {  // 1: each robot broadcasts its position p_i
+  host_.broadcast(context_.max_range, net::Position{host_.id(), host_.position()});
+}
+
+void VoronoiProtocol::on_report(const net::Report& report, std::uint32_t) {
+  // 4-5: robot i knows which sensors are in its cell and finds the farthest one.
+  farthest_reporter_m_ = std::max(farthest_reporter_m_, (report.position - host_.position()).norm());
+}
+
+void VoronoiProtocol::finish_initialisation() {
+  // 6: R_i = ‖p_i − s_j‖ for the farthest reporter j (R_min if nobody reported).
+  radius_m_ = std::max(farthest_reporter_m_, params_.decay.min);
+  phase_ = Phase::idle;
+  schedule_ticks();
+}
+
+void VoronoiProtocol::schedule_ticks() { host_.set_timer(sim::seconds(phase_s_), kTick); }
+
+// ---- The update: steps 1-4 of paper §III-B --------------------------------------------------
+
+void VoronoiProtocol::on_tick() {
+  host_.set_timer(sim::seconds(params_.period_s), kTick);
+  if (phase_ != Phase::idle) {  // still busy with the previous update: this one waits
+    tick_pending_ = true;
+    ++delayed_updates_;
+    return;
+  }
+  begin_update();
+}
+
+void VoronoiProtocol::begin_update() {
+  record_ = UpdateRecord{};
+  record_.robot = host_.id();
+  record_.update = ++update_;
+  record_.started = host_.now();
+  record_.delayed = tick_pending_;
+  tick_pending_ = false;
+  position_ = host_.position();
+  record_.position = position_;
+  neighbours_.clear();
+  readings_.clear();
+  if (params_.kind == ProtocolKind::oracle) {
+    run_oracle_update();
+    return;
+  }
+  discover_round();  // R_i carried over from the preceding update
+}
+
+void VoronoiProtocol::discover_round() {
+  // 1) detect all neighbouring robots within R_i.
+  ++record_.rounds;
+  phase_ = Phase::discovering;
+  const std::uint32_t bytes =
+      host_.broadcast(radius_m_, net::Discover{host_.id(), position_, radius_m_});
+  count(net::MessageType::discover, bytes);
+  host_.set_timer(sim::seconds(params_.reply_timeout_s), kRoundEnd);
+}
+
+void VoronoiProtocol::end_round() {
+  // 2) construct V_i from the replies (bisectors within Ω; the disk B(p_i, R_i) is applied
+  //    through the sensing range and the distance rule of decide()).
+  cell_ = compute_cell();
+  if (record_.rounds > 1) {
+    decide();
+    return;
+  }
+  // First round only: ask the sensors inside V_i for their readings (later rounds keep the
+  // readings that are still inside the shrinking V_i).
+  phase_ = Phase::sensing;
+  const double sense_range = std::min(radius_m_, max_vertex_distance(cell_.polygon, position_));
+  const std::uint32_t bytes =
+      host_.broadcast(sense_range, net::Sense{host_.id(), update_, cell_.polygon.vertices});
+  count(net::MessageType::sense, bytes);
+  host_.set_timer(sim::seconds(params_.reply_timeout_s), kSenseEnd);
+}
+
+void VoronoiProtocol::decide() {
+  if (params_.kind != ProtocolKind::radius_doubling) {
+    // One round only; the cell is not certified when it reaches beyond the radius.
+    finish_update(max_vertex_distance(cell_.polygon, position_) > radius_m_);
+    return;
+  }
+  // 3) d_i: the farthest sensor in V_i (the seed) or the farthest point of V_i = Ω ∩ B(p_i, R_i)
+  //    ∩ bisectors (Cortés), which is min(R_i, farthest vertex of the unbounded-by-disk cell).
+  const double farthest_m = params_.criterion == StopCriterion::sensors
+                                ? farthest_reading_in_cell()
+                                : std::min(radius_m_, max_vertex_distance(cell_.polygon, position_));
+  // 4) If R_i >= 2 d_i, stop (the paper's strict '>' never stops after R_i = 2 d_i; see
+  //    docs/decisions/0001-stop-rule.md). Otherwise grow R_i and go to step 1.
+  if (radius_m_ >= 2.0 * farthest_m) {
+    if (params_.shrink_on_stop) radius_m_ = std::max(2.0 * farthest_m, params_.decay.min);
+    finish_update(false);
+    return;
+  }
+  if (radius_m_ >= context_.max_range) {  // cannot grow any more: the cell is truncated
+    finish_update(true);
+    return;
+  }
+  radius_m_ = params_.growth == Growth::to_2d ? 2.0 * farthest_m : 2.0 * radius_m_;
+  radius_m_ = std::min(radius_m_, context_.max_range);
+  discover_round();
+}
+
+void VoronoiProtocol::finish_update(bool truncated) {
+  // The Lloyd target: centroid of the readings inside V_i weighted by SK(ρ)·A(s).
+  CentroidAccumulator accumulator(context_.scaling);
+  for (const HeardReading& r : readings_)
+    if (contains(cell_.polygon, r.position)) {
+      accumulator.add(r.position, r.value, host_.sensor_area(r.sensor));
+      ++record_.readings;
+    }
+  record_.radius = radius_m_;
+  record_.truncated = truncated;
+  record_.cell = truncated ? voronoi_cell(0, std::vector<Vec2>{position_}, {}, cell_.polygon, radius_m_).polygon
+                           : cell_.polygon;
+  for (std::uint32_t index : cell_.neighbours) record_.neighbours.push_back(neighbours_[index - 1].robot);
+  std::sort(record_.neighbours.begin(), record_.neighbours.end());
+  if (accumulator.has_mass()) {
+    last_target_ = accumulator.centroid();
+    host_.set_target(last_target_);
+  } else {
+    record_.no_mass = true;  // keep the previous target
+  }
+  record_.centroid = last_target_;
+  record_.finished = host_.now();
+  last_cell_ = record_.cell;
+  if (params_.kind == ProtocolKind::radius_doubling) decay_range();
+  phase_ = Phase::idle;
+  host_.update_finished(record_);
+  if (tick_pending_) begin_update();
+}
+
+void VoronoiProtocol::decay_range() {
+  // "If for successive `patience` updates R_i remains unchanged, R_i = R_i − Δr."
+  if (params_.decay.patience == 0) return;
+  unchanged_streak_ = radius_m_ == last_final_radius_ ? unchanged_streak_ + 1 : 1;
+  last_final_radius_ = radius_m_;
+  if (unchanged_streak_ >= params_.decay.patience) {
+    radius_m_ = std::max(radius_m_ - params_.decay.step, params_.decay.min);
+    unchanged_streak_ = 0;
+  }
+}
+
+void VoronoiProtocol::run_oracle_update() {
+  const RobotCell truth = host_.true_cell();
+  CentroidAccumulator accumulator(context_.scaling);
+  record_.readings = host_.read_sensors_in(truth.polygon, accumulator);
+  record_.radius = 2.0 * max_vertex_distance(truth.polygon, position_);  // what Cortés' rule needs
+  record_.cell = truth.polygon;
+  record_.neighbours = truth.neighbours;
+  if (accumulator.has_mass()) {
+    last_target_ = accumulator.centroid();
+    host_.set_target(last_target_);
+  } else {
+    record_.no_mass = true;
+  }
+  record_.centroid = last_target_;
+  record_.finished = host_.now();
+  last_cell_ = record_.cell;
+  host_.update_finished(record_);
+}
+
+// ---- Messages and timers --------------------------------------------------------------------
+
+void VoronoiProtocol::on_frame(const net::Frame& frame) {
+  if (const auto* discover = std::get_if<net::Discover>(&frame.payload)) {
+    answer_discover(*discover);
+  } else if (const auto* neighbour = std::get_if<net::Neighbor>(&frame.payload)) {
+    if (phase_ != Phase::discovering && phase_ != Phase::sensing) return;  // late reply
+    count(net::MessageType::neighbor, frame.size_bytes);
+    auto known = std::find_if(neighbours_.begin(), neighbours_.end(),
+                              [&](const HeardNeighbour& n) { return n.robot == neighbour->robot; });
+    if (known != neighbours_.end())
+      known->position = neighbour->position;
+    else
+      neighbours_.push_back({neighbour->robot, neighbour->position});
+  } else if (const auto* reading = std::get_if<net::Reading>(&frame.payload)) {
+    if (phase_ == Phase::idle || phase_ == Phase::initialising || reading->update != update_) return;
+    count(net::MessageType::reading, frame.size_bytes);
+    readings_.push_back({reading->sensor, reading->position, reading->reading});
+  } else if (const auto* report = std::get_if<net::Report>(&frame.payload)) {
+    if (phase_ == Phase::initialising) on_report(*report, frame.size_bytes);
+  }
+}
+
+void VoronoiProtocol::answer_discover(const net::Discover& discover) {
+  if (params_.kind == ProtocolKind::none || params_.kind == ProtocolKind::oracle) return;
+  host_.unicast(discover.robot, net::Neighbor{host_.id(), host_.position()});
+}
+
+void VoronoiProtocol::on_timer(std::uint32_t kind) {
+  switch (kind) {
+    case kInitEnd: finish_initialisation(); break;
+    case kTick: on_tick(); break;
+    case kRoundEnd: end_round(); break;
+    case kSenseEnd: decide(); break;
+    default: break;
+  }
+}
+
+void VoronoiProtocol::count(net::MessageType type, std::uint32_t bytes) {
+  if (bytes == 0) return;  // refused by the radio
+  MessageTally& tally = record_.messages[static_cast<std::size_t>(type)];
+  ++tally.count;
+  tally.bytes += bytes;
+}
+
+double VoronoiProtocol::farthest_reading_in_cell() const {
+  double farthest = 0.0;
+  for (const HeardReading& r : readings_)
+    if (contains(cell_.polygon, r.position))
+      farthest = std::max(farthest, (r.position - position_).norm());
+  return farthest;
+}
+
+Cell VoronoiProtocol::compute_cell() const {
+  std::vector<Vec2> sites{position_};
+  for (const HeardNeighbour& n : neighbours_) sites.push_back(n.position);
+  std::vector<std::uint32_t> candidates;
+  if (params_.kind == ProtocolKind::gabriel) {
+    candidates = gabriel_neighbours(0, sites);  // the paper's approximation for sparse robots
+  } else {
+    for (std::uint32_t i = 1; i < sites.size(); ++i) candidates.push_back(i);
+  }
+  return voronoi_cell(0, sites, candidates, context_.domain);
+}
+
+}  // namespace masnet::protocols

@@ -1,0 +1,128 @@
+#pragma once
+// The robots' Voronoi protocols as one state machine (SPEC §5). The variants differ in a rule,
+// not in a file (STYLE): how many DISCOVER rounds, how R grows, when to stop, how R decays.
+//   radius_doubling — the seed's protocol (paper §III-B) after Cortés et al.
+//   fixed_radius    — one DISCOVER round with a constant R
+//   gabriel         — one round at max range, only Gabriel neighbours bound the cell
+//   oracle          — the exact cell from true positions, zero messages
+//   none            — the robot never updates (demo scenarios)
+// Paper names: R_i → radius_m_, d_i → farthest_m, p_i → position_, V_i → cell.
+#include <cstdint>
+#include <vector>
+
+#include "protocols/density_scaling.hpp"
+#include "protocols/geometry.hpp"
+#include "protocols/host.hpp"
+
+namespace masnet::protocols {
+
+enum class ProtocolKind { none, radius_doubling, oracle, fixed_radius, gabriel };
+/// How R grows when the stop rule fails: R ← 2·d (the seed) or R ← 2·R (Cortés).
+enum class Growth { to_2d, doubling };
+/// What d is: the farthest reading sensor in V (the seed) or the farthest vertex of V (Cortés,
+/// which guarantees the exact cell).
+enum class StopCriterion { sensors, vertices };
+
+/// Paper: "if for some time, e.g. successive 3 updates, R_i remains unchanged, R_i = R_i − Δr".
+struct RangeDecay {
+  std::uint32_t patience = 3;  ///< unchanged updates before R shrinks; 0 = never
+  double step = 0.02;          ///< Δr, world units
+  double min = 0.02;           ///< R_min, world units: the floor, and R when nobody reports
+};
+
+struct ProtocolParams {
+  ProtocolKind kind = ProtocolKind::radius_doubling;
+  double period_s = 0.01;         ///< Δt between updates (paper: 0.01 s)
+  Growth growth = Growth::to_2d;
+  StopCriterion criterion = StopCriterion::sensors;
+  bool shrink_on_stop = false;    ///< Cortés: on stop set R ← 2·d exactly
+  RangeDecay decay;
+  double reply_timeout_s = 0.002; ///< how long a round waits for replies
+  double fixed_radius = 0.3;      ///< R of `fixed_radius`, world units
+};
+
+/// What every robot's protocol knows of the deployment.
+struct ProtocolContext {
+  ConvexPolygon domain;
+  DensityScaling scaling;
+  double max_range = 1.5;  ///< the radio's cap, world units
+};
+
+class VoronoiProtocol {
+ public:
+  /// Timer kinds.
+  enum Timer : std::uint32_t { kInitEnd = 1, kTick, kRoundEnd, kSenseEnd };
+
+  /// `phase_s` in [0, period) staggers this robot's updates (seeded per robot by the world).
+  VoronoiProtocol(RobotHost& host, const ProtocolParams& params, const ProtocolContext& context,
+                  double phase_s);
+
+  /// Starts at time now(): the initialisation of paper §III-B, then periodic updates.
+  void start();
+  void on_frame(const net::Frame& frame);
+  void on_timer(std::uint32_t kind);
+
+  double radius() const { return radius_m_; }  ///< R_i
+  const ConvexPolygon& cell() const { return last_cell_; }
+  bool busy() const { return phase_ != Phase::idle; }
+  std::uint64_t delayed_updates() const { return delayed_updates_; }
+
+ private:
+  enum class Phase { idle, initialising, discovering, sensing };
+  struct HeardNeighbour {
+    NodeId robot;
+    Vec2 position;
+  };
+  struct HeardReading {
+    NodeId sensor;
+    Vec2 position;
+    double value;
+  };
+
+  // Paper §III-B "at the beginning": 1) broadcast POSITION, 5-6) R_i = farthest reporter.
+  void announce_position();
+  void on_report(const net::Report& report, std::uint32_t bytes);
+  void finish_initialisation();
+  void schedule_ticks();
+
+  // One update (steps 1-4 of paper §III-B).
+  void on_tick();
+  void begin_update();
+  void discover_round();            // step 1: detect neighbours within R_i
+  void end_round();                 // step 2: construct V_i within R_i
+  void decide();                    // steps 3-4: d_i, then stop or grow R_i
+  void finish_update(bool truncated);
+  void decay_range();
+  void run_oracle_update();
+
+  void answer_discover(const net::Discover& discover);
+  void count(net::MessageType type, std::uint32_t bytes);
+  double farthest_reading_in_cell() const;
+  Cell compute_cell() const;
+
+  RobotHost& host_;
+  ProtocolParams params_;
+  ProtocolContext context_;
+  double phase_s_;
+
+  Phase phase_ = Phase::idle;
+  double radius_m_;                  // R_i, carried over between updates
+  double farthest_reporter_m_ = 0.0;
+  std::uint32_t update_ = 0;
+  bool tick_pending_ = false;
+  std::uint64_t delayed_updates_ = 0;
+  std::uint32_t unchanged_streak_ = 0;
+  double last_final_radius_ = -1.0;
+  Vec2 last_target_{0, 0};
+  bool has_target_ = false;
+  ConvexPolygon last_cell_;
+
+  // State of the update in progress.
+  UpdateRecord record_;
+  Vec2 position_{0, 0};              // p_i for the whole update
+  std::vector<HeardNeighbour> neighbours_;
+  std::vector<HeardReading> readings_;
+  Cell cell_;                        // Ω ∩ bisectors (no disk): the V_i sent in SENSE
+};
+
+}  // namespace masnet::protocols

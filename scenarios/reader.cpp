@@ -1,0 +1,348 @@
+#include "scenarios/reader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace masnet::scenarios {
+
+ScenarioReader::ScenarioReader(std::string file_name,
+                               std::vector<std::pair<std::string, std::string>> overrides)
+    : file_name_(std::move(file_name)), overrides_(std::move(overrides)) {}
+
+std::string ScenarioReader::location(const YAML::Node& node, const std::string& path) const {
+  // A value that came from the command line is located there, not in the file.
+  for (const auto& [override_path, text] : overrides_)
+    if (path == override_path || path.rfind(override_path + ".", 0) == 0 ||
+        path.rfind(override_path + "[", 0) == 0)
+      return "--set " + text;
+  const YAML::Mark mark = node.Mark();
+  if (mark.is_null()) return file_name_ + ":1:1";
+  return file_name_ + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
+}
+
+void ScenarioReader::error(std::string location, std::string message) {
+  diagnostics_.push_back({std::move(location), std::move(message)});
+}
+
+bool Range::contains(double v) const {
+  if (!std::isfinite(v)) return false;
+  if (lo_open ? !(v > lo) : !(v >= lo)) return false;
+  if (hi_open ? !(v < hi) : !(v <= hi)) return false;
+  return true;
+}
+
+std::string Range::describe() const {
+  auto num = [](double x) {
+    std::ostringstream out;
+    out << x;
+    return out.str();
+  };
+  const bool has_lo = lo > -1e307, has_hi = hi < 1e307;
+  if (has_lo && has_hi)
+    return std::string("in ") + (lo_open ? "(" : "[") + num(lo) + ", " + num(hi) + (hi_open ? ")" : "]");
+  if (has_lo) return lo == 0.0 ? (lo_open ? "> 0" : ">= 0") : (lo_open ? "> " : ">= ") + num(lo);
+  if (has_hi) return (hi_open ? "< " : "<= ") + num(hi);
+  return "a finite number";
+}
+
+Section::Section(ScenarioReader& reader, YAML::Node node, std::string path, std::string pointer)
+    : reader_(&reader), node_(std::move(node)), path_(std::move(path)), pointer_(std::move(pointer)) {}
+
+std::string Section::child_path(std::string_view key) const {
+  return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+}
+
+YAML::Node Section::child(std::string_view key) const {
+  if (!node_ || !node_.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
+  for (auto it = node_.begin(); it != node_.end(); ++it)
+    if (it->first.IsScalar() && it->first.Scalar() == key) return it->second;
+  return YAML::Node(YAML::NodeType::Undefined);
+}
+
+bool Section::has(std::string_view key) const { return child(key).IsDefined(); }
+
+std::string Section::where() const { return reader_->location(node_, path_); }
+
+std::string Section::where(std::string_view key) const {
+  const YAML::Node value = child(key);
+  return value.IsDefined() ? reader_->location(value, child_path(key)) : where();
+}
+
+void Section::error_at(std::string_view key, const std::string& message) {
+  reader_->error(where(key), child_path(key) + ": " + message);
+}
+
+void Section::resolve(std::string_view key, nlohmann::json value) {
+  reader_->resolved()[nlohmann::json::json_pointer(pointer_ + "/" + std::string(key))] = std::move(value);
+}
+
+namespace {
+std::string shown(const YAML::Node& node) {
+  if (node.IsScalar()) return "'" + node.Scalar() + "'";
+  if (node.IsSequence()) return "a list";
+  if (node.IsMap()) return "a mapping";
+  return "nothing";
+}
+}  // namespace
+
+double Section::number(std::string_view key, double fallback, Range range) {
+  known_.emplace(key);
+  const YAML::Node value = child(key);
+  double result = fallback;
+  if (value.IsDefined() && !value.IsNull()) {
+    double parsed = 0.0;
+    if (!value.IsScalar() || !YAML::convert<double>::decode(value, parsed)) {
+      error_at(key, "expected a number, got " + shown(value));
+    } else if (!range.contains(parsed)) {
+      error_at(key, "must be " + range.describe() + " (got " + value.Scalar() + ")");
+    } else {
+      result = parsed;
+    }
+  }
+  resolve(key, result);
+  return result;
+}
+
+std::int64_t Section::integer(std::string_view key, std::int64_t fallback, std::int64_t lo,
+                              std::int64_t hi) {
+  known_.emplace(key);
+  const YAML::Node value = child(key);
+  std::int64_t result = fallback;
+  if (value.IsDefined() && !value.IsNull()) {
+    long long parsed = 0;
+    if (!value.IsScalar() || !YAML::convert<long long>::decode(value, parsed)) {
+      error_at(key, "expected a whole number, got " + shown(value));
+    } else if (parsed < lo || parsed > hi) {
+      error_at(key, "must be between " + std::to_string(lo) + " and " + std::to_string(hi) +
+                        " (got " + value.Scalar() + ")");
+    } else {
+      result = parsed;
+    }
+  }
+  resolve(key, result);
+  return result;
+}
+
+bool Section::boolean(std::string_view key, bool fallback) {
+  known_.emplace(key);
+  const YAML::Node value = child(key);
+  bool result = fallback;
+  if (value.IsDefined() && !value.IsNull()) {
+    bool parsed = false;
+    if (!value.IsScalar() || !YAML::convert<bool>::decode(value, parsed))
+      error_at(key, "expected true or false, got " + shown(value));
+    else
+      result = parsed;
+  }
+  resolve(key, result);
+  return result;
+}
+
+std::string Section::text(std::string_view key, std::string fallback) {
+  known_.emplace(key);
+  const YAML::Node value = child(key);
+  std::string result = std::move(fallback);
+  if (value.IsDefined() && !value.IsNull()) {
+    if (!value.IsScalar())
+      error_at(key, "expected a text, got " + shown(value));
+    else
+      result = value.Scalar();
+  }
+  resolve(key, result);
+  return result;
+}
+
+std::string Section::choose(std::string_view key, const std::vector<std::string>& names,
+                            const std::string& fallback) {
+  known_.emplace(key);
+  const YAML::Node value = child(key);
+  std::string result = fallback;
+  if (value.IsDefined() && !value.IsNull()) {
+    if (!value.IsScalar() || std::find(names.begin(), names.end(), value.Scalar()) == names.end()) {
+      std::string list;
+      for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+      std::string message = "expected one of " + list + ", got " + shown(value);
+      if (value.IsScalar())
+        if (auto guess = closest(value.Scalar(), names)) message += " (did you mean '" + *guess + "'?)";
+      error_at(key, message);
+    } else {
+      result = value.Scalar();
+    }
+  }
+  resolve(key, result);
+  return result;
+}
+
+namespace {
+bool decode_point(const YAML::Node& node, Vec2& out) {
+  if (!node.IsSequence() || node.size() != 2) return false;
+  double x = 0, y = 0;
+  if (!node[0].IsScalar() || !node[1].IsScalar()) return false;
+  if (!YAML::convert<double>::decode(node[0], x) || !YAML::convert<double>::decode(node[1], y))
+    return false;
+  if (!std::isfinite(x) || !std::isfinite(y)) return false;
+  out = Vec2{x, y};
+  return true;
+}
+nlohmann::json json_point(const Vec2& p) { return nlohmann::json::array({p.x(), p.y()}); }
+}  // namespace
+
+Vec2 Section::point(std::string_view key, Vec2 fallback) {
+  known_.emplace(key);
+  const YAML::Node value = child(key);
+  Vec2 result = fallback;
+  if (value.IsDefined() && !value.IsNull()) {
+    Vec2 parsed;
+    if (!decode_point(value, parsed))
+      error_at(key, "expected a point [x, y], got " + shown(value));
+    else
+      result = parsed;
+  }
+  resolve(key, json_point(result));
+  return result;
+}
+
+std::vector<Vec2> Section::points(std::string_view key, std::size_t min_count) {
+  known_.emplace(key);
+  const YAML::Node value = child(key);
+  std::vector<Vec2> result;
+  if (value.IsDefined() && !value.IsNull()) {
+    if (!value.IsSequence()) {
+      error_at(key, "expected a list of points [[x, y], ...], got " + shown(value));
+    } else {
+      for (std::size_t i = 0; i < value.size(); ++i) {
+        Vec2 p;
+        if (!decode_point(value[i], p)) {
+          reader_->error(reader_->location(value[i], child_path(key)),
+                         child_path(key) + "[" + std::to_string(i) + "]: expected a point [x, y], got " +
+                             shown(value[i]));
+          continue;
+        }
+        result.push_back(p);
+      }
+      if (result.size() < min_count)
+        error_at(key, "needs at least " + std::to_string(min_count) + " points (got " +
+                          std::to_string(result.size()) + ")");
+    }
+  }
+  nlohmann::json list = nlohmann::json::array();
+  for (const Vec2& p : result) list.push_back(json_point(p));
+  resolve(key, list);
+  return result;
+}
+
+std::vector<double> Section::numbers(std::string_view key, Range range) {
+  known_.emplace(key);
+  const YAML::Node value = child(key);
+  std::vector<double> result;
+  if (value.IsDefined() && !value.IsNull()) {
+    if (!value.IsSequence()) {
+      error_at(key, "expected a list of numbers, got " + shown(value));
+    } else {
+      for (std::size_t i = 0; i < value.size(); ++i) {
+        double x = 0;
+        const std::string item = child_path(key) + "[" + std::to_string(i) + "]";
+        if (!value[i].IsScalar() || !YAML::convert<double>::decode(value[i], x)) {
+          reader_->error(reader_->location(value[i], child_path(key)),
+                         item + ": expected a number, got " + shown(value[i]));
+        } else if (!range.contains(x)) {
+          reader_->error(reader_->location(value[i], child_path(key)),
+                         item + ": must be " + range.describe() + " (got " + value[i].Scalar() + ")");
+        } else {
+          result.push_back(x);
+        }
+      }
+    }
+  }
+  resolve(key, result);
+  return result;
+}
+
+Section Section::section(std::string_view key) {
+  known_.emplace(key);
+  YAML::Node value = child(key);
+  const std::string path = child_path(key);
+  const std::string pointer = pointer_ + "/" + std::string(key);
+  if (value.IsDefined() && !value.IsNull() && !value.IsMap()) {
+    error_at(key, "expected a mapping of keys, got " + shown(value));
+    value = YAML::Node(YAML::NodeType::Undefined);
+  }
+  reader_->resolved()[nlohmann::json::json_pointer(pointer)] = nlohmann::json::object();
+  return Section(*reader_, value, path, pointer);
+}
+
+std::vector<Section> Section::sections(std::string_view key) {
+  known_.emplace(key);
+  const YAML::Node value = child(key);
+  std::vector<Section> result;
+  const std::string pointer = pointer_ + "/" + std::string(key);
+  reader_->resolved()[nlohmann::json::json_pointer(pointer)] = nlohmann::json::array();
+  if (!value.IsDefined() || value.IsNull()) return result;
+  if (!value.IsSequence()) {
+    error_at(key, "expected a list, got " + shown(value));
+    return result;
+  }
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    const std::string path = child_path(key) + "[" + std::to_string(i) + "]";
+    if (!value[i].IsMap()) {
+      reader_->error(reader_->location(value[i], child_path(key)),
+                     path + ": expected a mapping of keys, got " + shown(value[i]));
+      continue;
+    }
+    const std::string item_pointer = pointer + "/" + std::to_string(result.size());
+    reader_->resolved()[nlohmann::json::json_pointer(item_pointer)] = nlohmann::json::object();
+    result.emplace_back(*reader_, value[i], path, item_pointer);
+  }
+  return result;
+}
+
+void Section::reject(std::string_view key, const std::string& why) {
+  known_.emplace(key);
+  if (has(key)) error_at(key, why);
+}
+
+void Section::finish() {
+  if (!node_ || !node_.IsMap()) return;
+  std::vector<std::string> known(known_.begin(), known_.end());
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    const std::string key = it->first.IsScalar() ? it->first.Scalar() : std::string("?");
+    if (known_.count(key)) continue;
+    std::string message = "unknown key '" + key + "'" +
+                          (path_.empty() ? std::string() : " in '" + path_ + "'");
+    if (auto guess = closest(key, known)) message += " (did you mean '" + *guess + "'?)";
+    reader_->error(reader_->location(it->first, child_path(key)), message);
+  }
+}
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0u : 1u)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+std::optional<std::string> closest(std::string_view word, const std::vector<std::string>& candidates) {
+  std::optional<std::string> best;
+  std::size_t best_distance = 0;
+  for (const auto& c : candidates) {
+    const std::size_t d = edit_distance(word, c);
+    if (!best || d < best_distance) {
+      best = c;
+      best_distance = d;
+    }
+  }
+  // A plausible typo: at most a third of the word wrong (and at least one edit allowed).
+  if (best && best_distance <= std::max<std::size_t>(1, word.size() / 3)) return best;
+  return std::nullopt;
+}
+
+}  // namespace masnet::scenarios

@@ -1,0 +1,135 @@
+#pragma once
+// Reading a YAML scenario with positions (STYLE habit 9): every value is read through a
+// Section, which knows its dotted path and its file position, checks type and range, records
+// the resolved value (defaults included) for summary.json, and reports unknown keys with a
+// "did you mean" suggestion. Errors are collected, never thrown through the model.
+#include <cstdint>
+#include <functional>
+#include <initializer_list>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
+
+#include "net/vec2.hpp"
+
+namespace masnet::scenarios {
+
+using net::Vec2;
+
+/// One problem with the input, printed as "location: message".
+struct Diagnostic {
+  std::string location;  ///< "file:line:col" or "--set a.b=v"
+  std::string message;
+  std::string text() const { return location + ": " + message; }
+};
+
+/// Collects diagnostics and the resolved values of one scenario file.
+class ScenarioReader {
+ public:
+  /// `overrides` maps each dotted path given with --set to its "a.b=v" text.
+  ScenarioReader(std::string file_name, std::vector<std::pair<std::string, std::string>> overrides);
+
+  const std::string& file_name() const { return file_name_; }
+  /// Location of `node` (at `path`), for messages.
+  std::string location(const YAML::Node& node, const std::string& path) const;
+  void error(std::string location, std::string message);
+
+  const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
+  bool ok() const { return diagnostics_.empty(); }
+  nlohmann::json& resolved() { return resolved_; }
+
+ private:
+  std::string file_name_;
+  std::vector<std::pair<std::string, std::string>> overrides_;
+  std::vector<Diagnostic> diagnostics_;
+  nlohmann::json resolved_ = nlohmann::json::object();
+};
+
+/// A closed interval check for numbers; `lo_open`/`hi_open` exclude an end.
+struct Range {
+  double lo = -1e308, hi = 1e308;
+  bool lo_open = false, hi_open = false;
+  static Range positive() { return {0.0, 1e308, true, false}; }
+  static Range non_negative() { return {0.0, 1e308, false, false}; }
+  static Range unit() { return {0.0, 1.0, false, false}; }
+  bool contains(double v) const;
+  std::string describe() const;
+};
+
+/// A YAML mapping at a dotted path. Accessors return the value or the fallback (when the key
+/// is absent or bad), and remember the key as known for `finish()`.
+class Section {
+ public:
+  Section(ScenarioReader& reader, YAML::Node node, std::string path, std::string pointer);
+
+  const std::string& path() const { return path_; }
+  bool has(std::string_view key) const;
+  /// Location of `key`'s value, or of the section itself when absent.
+  std::string where(std::string_view key) const;
+  std::string where() const;
+  void error_at(std::string_view key, const std::string& message);
+
+  double number(std::string_view key, double fallback, Range range = {});
+  std::int64_t integer(std::string_view key, std::int64_t fallback, std::int64_t lo,
+                       std::int64_t hi);
+  bool boolean(std::string_view key, bool fallback);
+  std::string text(std::string_view key, std::string fallback);
+  /// One of `options` (by name); the message lists them all when the value is not one.
+  template <class E>
+  E choice(std::string_view key, E fallback,
+           std::initializer_list<std::pair<std::string_view, E>> options) {
+    std::vector<std::string> names;
+    for (const auto& [name, value] : options) names.emplace_back(name);
+    const std::string picked = choose(key, names, fallback_name(options, fallback));
+    for (const auto& [name, value] : options)
+      if (name == picked) return value;
+    return fallback;
+  }
+  Vec2 point(std::string_view key, Vec2 fallback);
+  /// A list of [x, y] points; `min_count` checked.
+  std::vector<Vec2> points(std::string_view key, std::size_t min_count = 0);
+  std::vector<double> numbers(std::string_view key, Range range = {});
+  /// A nested mapping (an empty one if absent).
+  Section section(std::string_view key);
+  /// A list of mappings.
+  std::vector<Section> sections(std::string_view key);
+  /// Marks `key` as known but reports it if present (it does not apply here).
+  void reject(std::string_view key, const std::string& why);
+  /// Reports every key that no accessor asked for.
+  void finish();
+
+  /// Records a resolved value computed by the builder (e.g. a derived default).
+  void resolve(std::string_view key, nlohmann::json value);
+
+ private:
+  template <class E>
+  static std::string fallback_name(std::initializer_list<std::pair<std::string_view, E>> options,
+                                   E fallback) {
+    for (const auto& [name, value] : options)
+      if (value == fallback) return std::string(name);
+    return {};
+  }
+  std::string choose(std::string_view key, const std::vector<std::string>& names,
+                     const std::string& fallback);
+  std::string child_path(std::string_view key) const;
+  YAML::Node child(std::string_view key) const;
+
+  ScenarioReader* reader_;
+  YAML::Node node_;
+  std::string path_;     // dotted, for messages: "field.targets[1]"
+  std::string pointer_;  // JSON pointer into the resolved scenario: "/field/targets/1"
+  std::set<std::string, std::less<>> known_;
+};
+
+/// Levenshtein distance, for "did you mean" suggestions.
+std::size_t edit_distance(std::string_view a, std::string_view b);
+/// The closest of `candidates` to `word`, if close enough to be a plausible typo.
+std::optional<std::string> closest(std::string_view word, const std::vector<std::string>& candidates);
+
+}  // namespace masnet::scenarios

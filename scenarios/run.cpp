@@ -1,0 +1,141 @@
+#include "scenarios/run.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+#include "sim/fingerprint.hpp"
+
+namespace masnet::scenarios {
+namespace fs = std::filesystem;
+
+Run::Run(const ScenarioDef& def)
+    : def_(def),
+      simulator_(std::make_unique<sim::Simulator>()),
+      world_(std::make_unique<agents::World>(*simulator_, def.world)),
+      recorder_(std::make_unique<Recorder>(*world_, def)) {
+  world_->set_observer(recorder_.get());
+}
+
+Run::~Run() = default;
+
+std::uint64_t Run::events() const { return simulator_->events_run(); }
+std::string Run::fingerprint() const { return simulator_->fingerprint().hex(); }
+
+void Run::execute(const ProgressFn& progress) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  world_->start();
+  // Checkpoints on integer grids of each period (no accumulated rounding): the recorder
+  // observes between run_until chunks, never as an event.
+  const sim::Time end = sim::time_at(def_.duration_s);
+  const sim::Duration sample = sim::seconds(def_.output.sample_period_s);
+  const sim::Duration trajectory = sim::seconds(def_.output.trajectory_period_s);
+  std::vector<sim::Time> snapshots;
+  for (double t : def_.output.snapshots) snapshots.push_back(sim::time_at(t));
+  std::sort(snapshots.begin(), snapshots.end());
+  std::int64_t next_sample = 0, next_trajectory = 0;
+  std::size_t next_snapshot = 0;
+  for (;;) {
+    const sim::Time t_sample = sim::kTimeZero + next_sample * sample;
+    const sim::Time t_trajectory = sim::kTimeZero + next_trajectory * trajectory;
+    sim::Time next = std::min({t_sample, t_trajectory, end});
+    if (next_snapshot < snapshots.size()) next = std::min(next, snapshots[next_snapshot]);
+    simulator_->run_until(next);
+    if (t_sample == next) {
+      recorder_->sample();
+      ++next_sample;
+    }
+    if (t_trajectory == next) {
+      recorder_->sample_trajectories();
+      ++next_trajectory;
+    }
+    while (next_snapshot < snapshots.size() && snapshots[next_snapshot] == next) {
+      recorder_->snapshot();
+      ++next_snapshot;
+    }
+    if (progress) progress(sim::to_seconds(next), simulator_->events_run());
+    if (next == end) break;
+  }
+  // The final state is always sampled, whatever the period.
+  if (recorder_->samples().empty() || recorder_->samples().back().t_s != def_.duration_s) recorder_->sample();
+  wall_time_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+}
+
+nlohmann::json Run::summary() const {
+  nlohmann::json j;
+  j["masnet_version"] = MASNET_VERSION;
+  j["seed"] = def_.seed;
+  j["sim_time_s"] = def_.duration_s;
+  j["wall_time_s"] = wall_time_s_;
+  j["events"] = simulator_->events_run();
+  j["fingerprint"] = simulator_->fingerprint().hex();
+  j["run_key"] = run_key(def_);
+  j["scenario"] = {{"name", def_.name},
+                   {"source", def_.source_path},
+                   {"sensors", world_->sensor_count()},
+                   {"robots", world_->robot_count()},
+                   {"sensor_layout", def_.sensor_layout},
+                   {"resolved", def_.resolved}};
+  j.update(recorder_->summary_metrics());
+  return j;
+}
+
+void Run::write_files(const std::string& dir) const {
+  const fs::path d(dir);
+  {
+    std::ofstream out(d / "summary.json");
+    out << summary().dump(2) << "\n";
+  }
+  recorder_->write_nodes((d / "nodes.csv").string());
+  recorder_->write_timeseries((d / "timeseries.csv").string());
+  recorder_->write_trajectories((d / "trajectories.csv").string());
+  if (def_.output.updates) recorder_->write_updates((d / "updates.csv").string());
+  recorder_->write_snapshots((d / "snapshots.json").string());
+}
+
+std::string run_key(const ScenarioDef& def) {
+  sim::Fingerprint h;
+  const std::string text = std::string(MASNET_VERSION) + "\n" + def.resolved.dump();
+  for (unsigned char c : text) h.mix(std::uint64_t{c});
+  return h.hex();
+}
+
+std::string check_run_directory(const std::string& dir, const std::string& key, bool force) {
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) return {};
+  if (!fs::is_directory(dir, ec)) return "'" + dir + "' exists and is not a directory";
+  if (force || fs::is_empty(dir, ec)) return {};
+  const fs::path summary = fs::path(dir) / "summary.json";
+  std::ifstream in(summary);
+  if (in) {
+    try {
+      const nlohmann::json j = nlohmann::json::parse(in);
+      if (j.value("run_key", std::string()) == key) return {};  // the same run again: replace it
+      return "refusing to overwrite '" + dir + "': it holds a different run (scenario '" +
+             j["scenario"].value("name", std::string("?")) + "', seed " + j["seed"].dump() +
+             "); choose another --out or add --force";
+    } catch (const nlohmann::json::exception&) {
+    }
+  }
+  return "refusing to overwrite '" + dir + "': it is not empty and holds no masnet run; choose another --out or add --force";
+}
+
+void publish_run_directory(const std::string& dir, const std::function<void(const std::string&)>& write) {
+  const fs::path target = fs::absolute(dir);
+  fs::create_directories(target.parent_path());
+  const fs::path staging = target.parent_path() / (target.filename().string() + ".partial-" + std::to_string(::getpid()));
+  fs::remove_all(staging);
+  fs::create_directories(staging);
+  try {
+    write(staging.string());
+  } catch (...) {
+    fs::remove_all(staging);
+    throw;
+  }
+  fs::remove_all(target);
+  fs::rename(staging, target);
+}
+
+}  // namespace masnet::scenarios

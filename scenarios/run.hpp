@@ -1,0 +1,63 @@
+#pragma once
+// One run of a scenario: the simulator, the world and the recorder together, advanced in
+// chunks between sample times, and the run directory it writes (SPEC §8).
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "scenarios/recorder.hpp"
+#include "scenarios/scenario.hpp"
+
+namespace masnet::scenarios {
+
+/// Called now and then during a run with (simulated seconds done, events so far).
+using ProgressFn = std::function<void(double t_s, std::uint64_t events)>;
+
+class Run {
+ public:
+  explicit Run(const ScenarioDef& def);
+  ~Run();
+
+  /// Simulates the whole duration.
+  void execute(const ProgressFn& progress = {});
+
+  /// summary.json: the stable keys of SPEC §8 and more.
+  nlohmann::json summary() const;
+  /// Writes summary.json, nodes.csv, timeseries.csv, trajectories.csv, updates.csv and
+  /// snapshots.json into the existing directory `dir`.
+  void write_files(const std::string& dir) const;
+
+  const Recorder& recorder() const { return *recorder_; }
+  std::uint64_t events() const;
+  std::string fingerprint() const;
+  double wall_time_s() const { return wall_time_s_; }
+
+ private:
+  const ScenarioDef& def_;
+  std::unique_ptr<sim::Simulator> simulator_;
+  std::unique_ptr<agents::World> world_;
+  std::unique_ptr<Recorder> recorder_;
+  double wall_time_s_ = 0.0;
+};
+
+/// A key that names the run: the same resolved scenario (seed included) and version give
+/// the same key. A run directory holding another key is "a different run".
+std::string run_key(const ScenarioDef& def);
+
+struct RunDirectoryOptions {
+  std::string out_dir;  ///< empty: runs/<name>-seed<seed>
+  bool force = false;   ///< replace a different run's directory
+};
+
+/// Checks that `dir` may receive this run (absent, empty, or the same run), or `force`.
+/// Returns an error message, empty when fine.
+std::string check_run_directory(const std::string& dir, const std::string& key, bool force);
+
+/// Writes the run into a temporary sibling directory and renames it into place, so that an
+/// interrupted run never leaves a half-written directory.
+void publish_run_directory(const std::string& dir, const std::function<void(const std::string&)>& write);
+
+}  // namespace masnet::scenarios

@@ -1,0 +1,537 @@
+#include "scenarios/scenario.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "sim/random.hpp"
+
+namespace masnet::scenarios {
+namespace {
+
+using agents::FieldKind;
+using protocols::ConvexPolygon;
+
+// ---- --set overrides -------------------------------------------------------------------------
+
+struct Override {
+  std::string path;  // "radio.loss"
+  std::string text;  // "radio.loss=0.2"
+  YAML::Node value;
+};
+
+std::vector<std::string> split_path(const std::string& path) {
+  std::vector<std::string> parts;
+  std::stringstream in(path);
+  std::string part;
+  while (std::getline(in, part, '.')) parts.push_back(part);
+  return parts;
+}
+
+// Parses "a.b=v" and writes v into the tree, creating mappings on the way.
+bool apply_override(YAML::Node& root, const std::string& text, std::vector<Override>& applied,
+                    std::vector<Diagnostic>& diagnostics) {
+  const auto eq = text.find('=');
+  const std::string where = "--set " + text;
+  if (eq == std::string::npos || eq == 0) {
+    diagnostics.push_back({where, "expected KEY.PATH=VALUE"});
+    return false;
+  }
+  const std::string path = text.substr(0, eq);
+  const std::vector<std::string> parts = split_path(path);
+  for (const auto& p : parts)
+    if (p.empty()) {
+      diagnostics.push_back({where, "empty key in '" + path + "'"});
+      return false;
+    }
+  YAML::Node value;
+  try {
+    value = YAML::Load(text.substr(eq + 1));
+  } catch (const YAML::Exception& e) {
+    diagnostics.push_back({where, "value is not valid YAML: " + e.msg});
+    return false;
+  }
+  if (!root.IsMap()) root = YAML::Node(YAML::NodeType::Map);
+  YAML::Node node = root;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    YAML::Node next = node[parts[i]];
+    if (!next.IsDefined() || next.IsNull()) {
+      node[parts[i]] = YAML::Node(YAML::NodeType::Map);
+      next = node[parts[i]];
+    } else if (!next.IsMap()) {
+      std::string prefix;
+      for (std::size_t k = 0; k <= i; ++k) prefix += (k ? "." : "") + parts[k];
+      diagnostics.push_back({where, "'" + prefix + "' is not a section, cannot set '" + path + "'"});
+      return false;
+    }
+    node = next;
+  }
+  node[parts.back()] = value;
+  applied.push_back({path, text, value});
+  return true;
+}
+
+// ---- Sections --------------------------------------------------------------------------------
+
+ConvexPolygon read_domain(Section s) {
+  ConvexPolygon domain = protocols::rectangle(0, 0, 1, 1);
+  const bool has_rect = s.has("rectangle"), has_poly = s.has("polygon");
+  if (has_rect && has_poly) s.error_at("polygon", "give either 'rectangle' or 'polygon', not both");
+  if (has_rect) {
+    const std::vector<double> r = s.numbers("rectangle");
+    if (r.size() != 4 || !(r[0] < r[2]) || !(r[1] < r[3]))
+      s.error_at("rectangle", "expected [xmin, ymin, xmax, ymax] with xmin < xmax and ymin < ymax");
+    else
+      domain = protocols::rectangle(r[0], r[1], r[2], r[3]);
+  } else {
+    s.numbers("rectangle");
+  }
+  if (has_poly) {
+    const std::vector<Vec2> points = s.points("polygon", 3);
+    if (points.size() >= 3) {
+      if (!protocols::is_simple(points))
+        s.error_at("polygon", "the polygon intersects itself");
+      else if (auto canonical = protocols::normalize_convex_polygon(points))
+        domain = *canonical;
+      else
+        s.error_at("polygon", "the polygon is not convex (the domain must be a convex polygon)");
+    }
+  } else {
+    s.points("polygon");
+  }
+  s.finish();
+  return domain;
+}
+
+agents::PathDef read_path(Section& s) {
+  agents::PathDef path;
+  path.waypoints = s.points("waypoints");
+  if (!path.waypoints.empty()) {
+    path.speed = s.number("speed", 0.1, Range::non_negative());
+    path.loop = s.boolean("loop", false);
+    s.reject("start", "give either 'start' (with 'velocity') or 'waypoints', not both");
+    s.reject("velocity", "'velocity' goes with 'start'; waypoints move at 'speed'");
+  } else {
+    if (!s.has("start") && !s.has("center")) s.error_at("start", "missing 'start: [x, y]' (or 'waypoints')");
+    path.start = s.has("center") ? s.point("center", Vec2{0.5, 0.5}) : s.point("start", Vec2{0.5, 0.5});
+    path.velocity = s.point("velocity", Vec2{0, 0});
+    s.reject("speed", "'speed' goes with 'waypoints'");
+    s.reject("loop", "'loop' goes with 'waypoints'");
+  }
+  return path;
+}
+
+agents::FieldDef read_field(Section s) {
+  agents::FieldDef f;
+  f.kind = s.choice<FieldKind>("kind", FieldKind::uniform,
+                               {{"uniform", FieldKind::uniform},
+                                {"acoustic", FieldKind::acoustic},
+                                {"gaussian", FieldKind::gaussian},
+                                {"diffusion", FieldKind::diffusion}});
+  const std::string only = "' applies to field kind ";
+  if (f.kind == FieldKind::uniform) {
+    f.uniform_value = s.number("value", 1.0, Range::positive());
+  } else {
+    s.reject("value", "'value" + only + "uniform");
+  }
+  if (f.kind == FieldKind::acoustic) {
+    f.amplitude = s.number("amplitude", 1.0, Range::positive());
+    f.alpha = s.number("alpha", 2.0, Range::positive());
+    if (s.has("min_distance") && s.text("min_distance", "auto") != "auto")
+      f.min_distance = s.number("min_distance", 0.0, Range::positive());
+    else
+      f.min_distance = 0.0;  // auto: half the sensor spacing, set by the builder
+    for (Section t : s.sections("targets")) {
+      f.targets.push_back(read_path(t));
+      t.finish();
+    }
+    if (f.targets.empty()) s.error_at("targets", "an acoustic field needs at least one target");
+  } else {
+    for (const char* key : {"amplitude", "alpha", "min_distance", "targets"})
+      s.reject(key, std::string("'") + key + only + "acoustic");
+  }
+  if (f.kind == FieldKind::gaussian) {
+    for (Section b : s.sections("bumps")) {
+      agents::GaussianBump bump;
+      bump.path = read_path(b);
+      bump.sigma = b.number("sigma", 0.1, Range::positive());
+      bump.amplitude = b.number("amplitude", 1.0, Range::positive());
+      b.finish();
+      f.bumps.push_back(bump);
+    }
+    if (f.bumps.empty()) s.error_at("bumps", "a gaussian field needs at least one bump");
+  } else {
+    s.reject("bumps", "'bumps" + only + "gaussian");
+  }
+  if (f.kind == FieldKind::diffusion) s.error_at("kind", "the diffusion field is not available yet");
+  s.finish();
+  return f;
+}
+
+protocols::DensityScaling read_scaling(Section s) {
+  using protocols::ScalingKind;
+  protocols::DensityScaling sk;
+  sk.kind = s.choice<ScalingKind>("kind", ScalingKind::identity,
+                                  {{"identity", ScalingKind::identity},
+                                   {"power", ScalingKind::power},
+                                   {"log1p", ScalingKind::log1p},
+                                   {"saturate", ScalingKind::saturate}});
+  if (sk.kind == ScalingKind::power)
+    sk.gamma = s.number("gamma", 1.0, Range::positive());
+  else
+    s.reject("gamma", "'gamma' applies to kind power");
+  if (sk.kind == ScalingKind::saturate)
+    sk.saturation = s.number("c", 1.0, Range::positive());
+  else
+    s.reject("c", "'c' applies to kind saturate");
+  s.finish();
+  return sk;
+}
+
+struct SensorLayout {
+  std::string kind;
+  double spacing = 0.0;  // h: grid spacing or sqrt(area / n)
+};
+
+std::vector<agents::SensorDef> read_sensor_file(const std::string& path, Section& s,
+                                                ScenarioReader& reader) {
+  std::vector<agents::SensorDef> sensors;
+  std::ifstream in(path);
+  if (!in) {
+    s.error_at("file", "cannot read sensor file '" + path + "'");
+    return sensors;
+  }
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<double> cols;
+    std::stringstream fields(line);
+    std::string field;
+    bool numeric = true;
+    while (std::getline(fields, field, ',')) {
+      char* end = nullptr;
+      const double v = std::strtod(field.c_str(), &end);
+      while (end && *end == ' ') ++end;
+      if (end == field.c_str() || (end && *end != '\0' && *end != '\r')) numeric = false;
+      cols.push_back(v);
+    }
+    if (!numeric) {
+      if (number == 1) continue;  // a header line
+      reader.error(path + ":" + std::to_string(number) + ":1", "expected numbers 'x,y' or 'x,y,area'");
+      continue;
+    }
+    if (cols.size() != 2 && cols.size() != 3) {
+      reader.error(path + ":" + std::to_string(number) + ":1",
+                   "expected 2 or 3 columns (x,y[,area]), got " + std::to_string(cols.size()));
+      continue;
+    }
+    agents::SensorDef d;
+    d.position = Vec2{cols[0], cols[1]};
+    d.area = cols.size() == 3 ? cols[2] : 0.0;
+    sensors.push_back(d);
+  }
+  return sensors;
+}
+
+std::vector<agents::SensorDef> read_sensors(Section s, const ConvexPolygon& domain, std::uint64_t seed,
+                                            const std::string& base_dir, ScenarioReader& reader,
+                                            SensorLayout& layout, double& noise_sigma) {
+  std::vector<agents::SensorDef> sensors;
+  layout.kind = s.choice<std::string>("layout", "grid", {{"grid", "grid"}, {"random", "random"}, {"file", "file"}});
+  noise_sigma = s.number("noise", 0.0, Range::non_negative());
+  Vec2 lo = domain.vertices[0], hi = domain.vertices[0];
+  for (const Vec2& v : domain.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  const double domain_area = protocols::area(domain);
+  if (layout.kind == "grid") {
+    const auto nx = s.integer("nx", 10, 1, 100000), ny = s.integer("ny", 10, 1, 100000);
+    const std::string alignment = s.choice<std::string>(
+        "alignment", "cell_centred", {{"cell_centred", "cell_centred"}, {"node_aligned", "node_aligned"}});
+    const double w = hi.x() - lo.x(), h = hi.y() - lo.y();
+    // cell_centred: the centres of an nx × ny grid of cells (the paper's 40 × 40 sensors);
+    // node_aligned: nx × ny nodes from wall to wall.
+    for (std::int64_t j = 0; j < ny; ++j)
+      for (std::int64_t i = 0; i < nx; ++i) {
+        double x, y;
+        if (alignment == "cell_centred") {
+          x = lo.x() + (static_cast<double>(i) + 0.5) * w / static_cast<double>(nx);
+          y = lo.y() + (static_cast<double>(j) + 0.5) * h / static_cast<double>(ny);
+        } else {
+          x = nx == 1 ? lo.x() + 0.5 * w : lo.x() + static_cast<double>(i) * w / static_cast<double>(nx - 1);
+          y = ny == 1 ? lo.y() + 0.5 * h : lo.y() + static_cast<double>(j) * h / static_cast<double>(ny - 1);
+        }
+        const Vec2 p{x, y};
+        if (protocols::contains(domain, p)) sensors.push_back({p, 0.0});
+      }
+    layout.spacing = std::min(w / static_cast<double>(alignment == "cell_centred" ? nx : std::max<std::int64_t>(nx - 1, 1)),
+                              h / static_cast<double>(alignment == "cell_centred" ? ny : std::max<std::int64_t>(ny - 1, 1)));
+  } else {
+    s.reject("nx", "'nx' applies to layout grid");
+    s.reject("ny", "'ny' applies to layout grid");
+    s.reject("alignment", "'alignment' applies to layout grid");
+  }
+  if (layout.kind == "random") {
+    const auto count = s.integer("count", 100, 0, 100000000);
+    auto rng = sim::RandomStream::keyed(seed, std::uint64_t{0}, sim::purpose("sensors.layout"));
+    // Rejection sampling in the bounding box keeps the layout uniform in any convex domain.
+    while (static_cast<std::int64_t>(sensors.size()) < count) {
+      const Vec2 p{rng.uniform(lo.x(), hi.x()), rng.uniform(lo.y(), hi.y())};
+      if (protocols::contains(domain, p)) sensors.push_back({p, 0.0});
+    }
+  } else {
+    s.reject("count", "'count' applies to layout random");
+  }
+  if (layout.kind == "file") {
+    std::string file = s.text("file", "");
+    if (file.empty()) {
+      s.error_at("file", "layout file needs 'file: path/to/sensors.csv'");
+    } else {
+      if (std::filesystem::path(file).is_relative()) file = (std::filesystem::path(base_dir) / file).string();
+      sensors = read_sensor_file(file, s, reader);
+      for (std::size_t k = 0; k < sensors.size(); ++k)
+        if (!protocols::contains(domain, sensors[k].position)) {
+          s.error_at("file", "sensor " + std::to_string(k) + " of '" + file + "' lies outside the domain");
+          break;
+        }
+    }
+  } else {
+    s.reject("file", "'file' applies to layout file");
+  }
+  s.finish();
+  if (layout.kind != "grid" && !sensors.empty())
+    layout.spacing = std::sqrt(domain_area / static_cast<double>(sensors.size()));
+  // Every sensor stands for an equal share of Ω unless the file says otherwise.
+  for (auto& d : sensors)
+    if (d.area <= 0.0) d.area = domain_area / static_cast<double>(sensors.size());
+  return sensors;
+}
+
+std::vector<Vec2> read_robots(Section s, const ConvexPolygon& domain, std::uint64_t seed,
+                              agents::MotionParams& motion) {
+  std::vector<Vec2> robots;
+  const std::string layout = s.choice<std::string>(
+      "layout", "grid", {{"grid", "grid"}, {"positions", "positions"}, {"random", "random"}});
+  Vec2 lo = domain.vertices[0], hi = domain.vertices[0];
+  for (const Vec2& v : domain.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  if (layout == "grid") {
+    // Cell-centred: 3 × 3 on the unit square gives 1/6, 1/2, 5/6 (the paper's §VI-A start).
+    const auto nx = s.integer("nx", 3, 1, 10000), ny = s.integer("ny", 3, 1, 10000);
+    for (std::int64_t j = 0; j < ny; ++j)
+      for (std::int64_t i = 0; i < nx; ++i)
+        robots.push_back(Vec2{lo.x() + (static_cast<double>(i) + 0.5) * (hi.x() - lo.x()) / static_cast<double>(nx),
+                              lo.y() + (static_cast<double>(j) + 0.5) * (hi.y() - lo.y()) / static_cast<double>(ny)});
+  } else {
+    s.reject("nx", "'nx' applies to layout grid");
+    s.reject("ny", "'ny' applies to layout grid");
+  }
+  if (layout == "positions") {
+    robots = s.points("positions", 1);
+    for (std::size_t i = 0; i < robots.size(); ++i)
+      if (!protocols::contains(domain, robots[i])) {
+        s.error_at("positions", "robot " + std::to_string(i) + " at (" + std::to_string(robots[i].x()) + ", " +
+                                    std::to_string(robots[i].y()) + ") lies outside the domain");
+        break;
+      }
+  } else {
+    s.reject("positions", "'positions' applies to layout positions");
+  }
+  if (layout == "random") {
+    const auto count = s.integer("count", 9, 1, 10000000);
+    auto rng = sim::RandomStream::keyed(seed, std::uint64_t{0}, sim::purpose("robots.layout"));
+    while (static_cast<std::int64_t>(robots.size()) < count) {
+      const Vec2 p{rng.uniform(lo.x(), hi.x()), rng.uniform(lo.y(), hi.y())};
+      if (protocols::contains(domain, p)) robots.push_back(p);
+    }
+  } else {
+    s.reject("count", "'count' applies to layout random");
+  }
+  motion.k = s.number("k", 3.0, Range::non_negative());
+  motion.k_v = s.number("k_v", 1.0, Range::non_negative());
+  motion.max_speed = s.number("max_speed", 0.0, Range::non_negative());
+  motion.substep_s = s.number("substep", 1e-3, Range::positive());
+  s.finish();
+  return robots;
+}
+
+net::RadioParams read_radio(Section s) {
+  net::RadioParams r;
+  r.max_range = s.number("max_range", r.max_range, Range::positive());
+  r.meters_per_unit = s.number("meters_per_unit", r.meters_per_unit, Range::positive());
+  r.latency_s = s.number("latency", r.latency_s, Range::non_negative());
+  r.bitrate_bps = s.number("bitrate", r.bitrate_bps, Range::positive());
+  r.jitter_s = s.number("jitter", r.jitter_s, Range::non_negative());
+  const std::string level = s.choice<std::string>(
+      "level", "airtime", {{"ideal", "ideal"}, {"airtime", "airtime"}, {"collision", "collision"}});
+  if (level == "collision") s.error_at("level", "level 'collision' is not available yet (use ideal or airtime)");
+  r.level = level == "ideal" ? net::RadioLevel::ideal : net::RadioLevel::airtime;
+  r.loss = s.number("loss", r.loss, Range{0.0, 1.0, false, true});
+  Section e = s.section("energy");
+  r.energy.electronics_j_per_bit = e.number("electronics", r.energy.electronics_j_per_bit, Range::non_negative());
+  r.energy.free_space_j_per_bit_m2 = e.number("free_space", r.energy.free_space_j_per_bit_m2, Range::positive());
+  r.energy.multipath_j_per_bit_m4 = e.number("multipath", r.energy.multipath_j_per_bit_m4, Range::positive());
+  r.energy.idle_power_w = e.number("idle_power", r.energy.idle_power_w, Range::non_negative());
+  r.energy.battery_j = e.number("battery", r.energy.battery_j, Range::non_negative());
+  e.finish();
+  Section z = s.section("sizes");
+  auto size = [&](const char* key, std::uint32_t& field) {
+    field = static_cast<std::uint32_t>(z.integer(key, field, 0, 65535));
+  };
+  size("header", r.sizes.header_bytes);
+  size("id", r.sizes.id_bytes);
+  size("position", r.sizes.position_bytes);
+  size("measurement", r.sizes.measurement_bytes);
+  size("radius", r.sizes.radius_bytes);
+  size("vertex", r.sizes.vertex_bytes);
+  size("counter", r.sizes.counter_bytes);
+  z.finish();
+  s.finish();
+  return r;
+}
+
+protocols::ProtocolParams read_protocol(Section s) {
+  using protocols::ProtocolKind;
+  protocols::ProtocolParams p;
+  p.kind = s.choice<ProtocolKind>("kind", ProtocolKind::radius_doubling,
+                                  {{"none", ProtocolKind::none},
+                                   {"radius_doubling", ProtocolKind::radius_doubling},
+                                   {"oracle", ProtocolKind::oracle},
+                                   {"fixed_radius", ProtocolKind::fixed_radius},
+                                   {"gabriel", ProtocolKind::gabriel}});
+  p.period_s = s.number("period", p.period_s, Range::positive());
+  p.reply_timeout_s = s.number("reply_timeout", p.reply_timeout_s, Range::positive());
+  p.growth = s.choice<protocols::Growth>("growth", p.growth,
+                                         {{"to_2d", protocols::Growth::to_2d}, {"double", protocols::Growth::doubling}});
+  p.criterion = s.choice<protocols::StopCriterion>(
+      "criterion", p.criterion,
+      {{"sensors", protocols::StopCriterion::sensors}, {"vertices", protocols::StopCriterion::vertices}});
+  p.shrink_on_stop = s.boolean("shrink_on_stop", p.shrink_on_stop);
+  Section d = s.section("decay");
+  p.decay.patience = static_cast<std::uint32_t>(d.integer("patience", p.decay.patience, 0, 1000000));
+  p.decay.step = d.number("step", p.decay.step, Range::non_negative());
+  p.decay.min = d.number("min", p.decay.min, Range::positive());
+  d.finish();
+  p.fixed_radius = s.number("radius", p.fixed_radius, Range::positive());
+  s.finish();
+  return p;
+}
+
+agents::BeaconDef read_beacons(Section s) {
+  agents::BeaconDef b;
+  b.senders = s.choice<agents::BeaconSenders>("senders", agents::BeaconSenders::none,
+                                              {{"none", agents::BeaconSenders::none},
+                                               {"robots", agents::BeaconSenders::robots},
+                                               {"sensors", agents::BeaconSenders::sensors},
+                                               {"all", agents::BeaconSenders::all}});
+  b.period_s = s.number("period", b.period_s, Range::positive());
+  b.range = s.number("range", b.range, Range::positive());
+  s.finish();
+  return b;
+}
+
+OutputDef read_output(Section s, double duration_s) {
+  OutputDef o;
+  o.sample_period_s = s.number("sample_period", o.sample_period_s, Range::positive());
+  o.trajectory_period_s = s.number("trajectory_period", o.trajectory_period_s, Range::positive());
+  o.snapshots = s.numbers("snapshots", Range{0.0, duration_s > 0 ? duration_s : 1e308});
+  o.updates = s.boolean("updates", o.updates);
+  o.figures = s.boolean("figures", o.figures);
+  o.report = s.boolean("report", o.report);
+  s.finish();
+  return o;
+}
+
+}  // namespace
+
+LoadResult load_scenario_text(const std::string& text, const std::string& file_name,
+                              const std::vector<std::string>& overrides, std::optional<std::uint64_t> seed) {
+  LoadResult result;
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    result.diagnostics.push_back({file_name + ":" + std::to_string(e.mark.line + 1) + ":" +
+                                      std::to_string(e.mark.column + 1),
+                                  "YAML syntax error: " + e.msg});
+    return result;
+  }
+  if (overrides.empty() && (!root.IsDefined() || root.IsNull())) {
+    result.diagnostics.push_back({file_name + ":1:1", "the scenario is empty (expected a mapping with at least 'duration')"});
+    return result;
+  }
+  if (root.IsDefined() && !root.IsNull() && !root.IsMap()) {
+    const YAML::Mark m = root.Mark();
+    result.diagnostics.push_back({file_name + ":" + std::to_string(m.line + 1) + ":" + std::to_string(m.column + 1),
+                                  "the scenario must be a mapping of sections (name, duration, sensors, ...)"});
+    return result;
+  }
+  std::vector<Override> applied;
+  for (const std::string& o : overrides) apply_override(root, o, applied, result.diagnostics);
+  if (!result.diagnostics.empty()) return result;
+
+  std::vector<std::pair<std::string, std::string>> located;
+  for (const Override& o : applied) located.emplace_back(o.path, o.text);
+  ScenarioReader reader(file_name, located);
+  Section top(reader, root, "", "");
+  ScenarioDef def;
+  def.source_path = file_name;
+  def.name = top.text("name", std::filesystem::path(file_name).stem().string());
+  def.seed = static_cast<std::uint64_t>(top.integer("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
+  if (seed) {
+    def.seed = *seed;
+    top.resolve("seed", static_cast<std::int64_t>(*seed));
+  }
+  if (!top.has("duration")) top.error_at("duration", "missing required key 'duration' (seconds of simulated time)");
+  def.duration_s = top.number("duration", 1.0, Range::positive());
+  def.world.seed = def.seed;
+  def.world.domain = read_domain(top.section("domain"));
+  const std::string base_dir = std::filesystem::path(file_name).parent_path().string();
+  SensorLayout layout;
+  def.world.sensors =
+      read_sensors(top.section("sensors"), def.world.domain, def.seed, base_dir, reader, layout, def.world.sensor_noise_sigma);
+  def.sensor_layout = layout.kind;
+  def.world.field = read_field(top.section("field"));
+  if (def.world.field.kind == FieldKind::acoustic && def.world.field.min_distance <= 0.0) {
+    // d_min = h/2 by default: half the sensor spacing removes the singularity (SPEC §6.1).
+    def.world.field.min_distance = layout.spacing > 0 ? 0.5 * layout.spacing : 0.01;
+    reader.resolved()[nlohmann::json::json_pointer("/field/min_distance")] = def.world.field.min_distance;
+  }
+  def.world.scaling = read_scaling(top.section("density_scaling"));
+  def.world.robots = read_robots(top.section("robots"), def.world.domain, def.seed, def.world.motion);
+  def.world.radio = read_radio(top.section("radio"));
+  def.world.protocol = read_protocol(top.section("protocol"));
+  def.world.beacons = read_beacons(top.section("beacons"));
+  def.output = read_output(top.section("output"), def.duration_s);
+  for (const char* later : {"control", "groups", "faults"})
+    top.reject(later, std::string("section '") + later + "' is not supported by this version of masnet");
+  top.finish();
+  if (!reader.ok()) {
+    result.diagnostics = reader.diagnostics();
+    return result;
+  }
+  def.resolved = reader.resolved();
+  result.scenario = std::move(def);
+  return result;
+}
+
+LoadResult load_scenario(const std::string& path, const std::vector<std::string>& overrides,
+                         std::optional<std::uint64_t> seed) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    LoadResult result;
+    result.diagnostics.push_back({path, "cannot read the scenario file"});
+    return result;
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  return load_scenario_text(text.str(), path, overrides, seed);
+}
+
+}  // namespace masnet::scenarios

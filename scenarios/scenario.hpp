@@ -1,0 +1,54 @@
+#pragma once
+// A scenario file turned into definitions (STYLE habit 8): the loader fills the definition
+// structs of the lower layers, reports every bad value as `file:line:col: message`, and
+// records the resolved scenario (defaults included) for summary.json. Every key is
+// documented in docs/scenario-reference.md.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "agents/world.hpp"
+#include "scenarios/reader.hpp"
+
+namespace masnet::scenarios {
+
+struct OutputDef {
+  double sample_period_s = 0.05;      ///< timeseries.csv rows
+  double trajectory_period_s = 0.02;  ///< trajectories.csv rows
+  std::vector<double> snapshots;      ///< times of the snapshot figures, seconds
+  bool updates = true;                ///< write updates.csv (one row per protocol update)
+  bool figures = true;                ///< write figures/ (PNG and SVG)
+  bool report = true;                 ///< write report.html
+};
+
+struct ScenarioDef {
+  std::string name;
+  std::string source_path;
+  std::uint64_t seed = 1;
+  double duration_s = 0.0;
+  agents::WorldDef world;
+  OutputDef output;
+  std::string sensor_layout;  ///< "grid", "random" or "file": said in the report
+  nlohmann::json resolved;    ///< every key with its value, defaults included
+};
+
+struct LoadResult {
+  std::optional<ScenarioDef> scenario;  ///< set when there is no diagnostic
+  std::vector<Diagnostic> diagnostics;
+};
+
+/// Loads `path`, applying `overrides` ("a.b.c=VALUE", VALUE parsed as YAML) and then the
+/// seed override. Never throws for bad input: problems come back as diagnostics.
+LoadResult load_scenario(const std::string& path, const std::vector<std::string>& overrides,
+                         std::optional<std::uint64_t> seed = std::nullopt);
+
+/// The same from YAML text (tests); `file_name` is used in messages and to resolve
+/// relative paths (sensor files).
+LoadResult load_scenario_text(const std::string& text, const std::string& file_name,
+                              const std::vector<std::string>& overrides,
+                              std::optional<std::uint64_t> seed = std::nullopt);
+
+}  // namespace masnet::scenarios
