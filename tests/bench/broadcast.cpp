@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
   counter.count.assign(n, 0);
   counter.sender_sum.assign(n, 0);
   radio.set_listener(&counter);
-  for (std::uint32_t i = 0; i < n; ++i) radio.add_static_node(sim::node_id(i), pos[i]);
+  for (std::uint32_t i = 0; i < n; ++i) radio.add_static_node(sim::node_id(i), pos[i], i);
 
   struct Sender {
     sim::Simulator* simulator;

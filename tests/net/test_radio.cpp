@@ -66,12 +66,12 @@ TEST_CASE("broadcast deliveries equal a brute-force range check, static and movi
     sim::RandomStream rng(static_cast<std::uint64_t>(layout));
     const int n_static = 50 + 20 * layout, n_mobile = layout % 2 == 0 ? 10 : 60;  // both paths
     for (int i = 0; i < n_static; ++i)
-      radio.add_static_node(sim::node_id(i), Vec2{rng.uniform01(), rng.uniform01()});
+      radio.add_static_node(sim::node_id(i), Vec2{rng.uniform01(), rng.uniform01()}, i);
     for (int i = 0; i < n_mobile; ++i) {
       const auto id = static_cast<std::uint32_t>(n_static + i);
       motion.lines[id] = {Vec2{rng.uniform01(), rng.uniform01()},
                           Vec2{rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3)}};
-      radio.add_mobile_node(sim::node_id(id));
+      radio.add_mobile_node(sim::node_id(id), id);
     }
     const int n = n_static + n_mobile;
     // Expected receivers computed by brute force at each send time.
@@ -107,10 +107,10 @@ TEST_CASE("nothing is delivered beyond the range and the addressee of a unicast 
   Recorder rec;
   rec.sim = &sim;
   radio.set_listener(&rec);
-  radio.add_static_node(sim::node_id(0), Vec2{0, 0});
-  radio.add_static_node(sim::node_id(1), Vec2{0.3, 0});
-  radio.add_static_node(sim::node_id(2), Vec2{0.3000001, 0});
-  radio.add_static_node(sim::node_id(3), Vec2{0.6, 0});  // beyond max_range from node 0
+  radio.add_static_node(sim::node_id(0), Vec2{0, 0}, 0);
+  radio.add_static_node(sim::node_id(1), Vec2{0.3, 0}, 1);
+  radio.add_static_node(sim::node_id(2), Vec2{0.3000001, 0}, 2);
+  radio.add_static_node(sim::node_id(3), Vec2{0.6, 0}, 3);  // beyond max_range from node 0
   radio.broadcast(sim::node_id(0), 0.3, beacon(sim::node_id(0)));
   radio.unicast(sim::node_id(0), sim::node_id(2), beacon(sim::node_id(0)));
   radio.unicast(sim::node_id(0), sim::node_id(3), beacon(sim::node_id(0)));
@@ -137,7 +137,7 @@ TEST_CASE("the loss rate lies inside the binomial 99.9% interval", "[net]") {
     radio.set_listener(&rec);
     const int n = 101;
     for (int i = 0; i < n; ++i)
-      radio.add_static_node(sim::node_id(i), Vec2{0.001 * i, 0});
+      radio.add_static_node(sim::node_id(i), Vec2{0.001 * i, 0}, i);
     const int frames = 200;
     for (int k = 0; k < frames; ++k)
       radio.broadcast(sim::node_id(k % n), 1.0, beacon(sim::node_id(k % n)));
@@ -164,8 +164,8 @@ TEST_CASE("delay is latency plus airtime, and a transmitter sends one frame at a
   Recorder rec;
   rec.sim = &sim;
   radio.set_listener(&rec);
-  radio.add_static_node(sim::node_id(0), Vec2{0, 0});
-  radio.add_static_node(sim::node_id(1), Vec2{0.1, 0});
+  radio.add_static_node(sim::node_id(0), Vec2{0, 0}, 0);
+  radio.add_static_node(sim::node_id(1), Vec2{0.1, 0}, 1);
   radio.broadcast(sim::node_id(0), 0.2, beacon(sim::node_id(0)));
   radio.broadcast(sim::node_id(0), 0.2, beacon(sim::node_id(0)));
   sim.run();
@@ -195,10 +195,10 @@ TEST_CASE("energy equals the first-order radio model, continuous at d0", "[net]"
   net::RadioParams params;
   params.meters_per_unit = 100;
   net::Radio radio(sim, params, 1);
-  radio.add_static_node(sim::node_id(0), Vec2{0, 0});
-  radio.add_static_node(sim::node_id(1), Vec2{0.5, 0});   // 50 m
-  radio.add_static_node(sim::node_id(2), Vec2{0.2, 0});   // overhears the unicast to node 1
-  radio.add_static_node(sim::node_id(3), Vec2{0.9, 0});   // out of range
+  radio.add_static_node(sim::node_id(0), Vec2{0, 0}, 0);
+  radio.add_static_node(sim::node_id(1), Vec2{0.5, 0}, 1);   // 50 m
+  radio.add_static_node(sim::node_id(2), Vec2{0.2, 0}, 2);   // overhears the unicast to node 1
+  radio.add_static_node(sim::node_id(3), Vec2{0.9, 0}, 3);   // out of range
   radio.unicast(sim::node_id(0), sim::node_id(1), beacon(sim::node_id(0)));
   sim.run();
   const double bits = 8.0 * (params.sizes.header_bytes + params.sizes.id_bytes + params.sizes.position_bytes);
@@ -218,8 +218,8 @@ TEST_CASE("a node whose battery empties stops sending and receiving", "[net]") {
   Recorder rec;
   rec.sim = &sim;
   radio.set_listener(&rec);
-  radio.add_static_node(sim::node_id(0), Vec2{0, 0});
-  radio.add_static_node(sim::node_id(1), Vec2{0.1, 0});
+  radio.add_static_node(sim::node_id(0), Vec2{0, 0}, 0);
+  radio.add_static_node(sim::node_id(1), Vec2{0.1, 0}, 1);
   CHECK(radio.broadcast(sim::node_id(0), 0.1, beacon(sim::node_id(0))));
   CHECK(radio.broadcast(sim::node_id(0), 0.1, beacon(sim::node_id(0))));
   CHECK_FALSE(radio.broadcast(sim::node_id(0), 0.1, beacon(sim::node_id(0))));
@@ -246,7 +246,7 @@ TEST_CASE("idle power empties a battery at the predicted time", "[net]") {
   Recorder rec;
   rec.sim = &sim;
   radio.set_listener(&rec);
-  radio.add_static_node(sim::node_id(0), Vec2{0, 0});
+  radio.add_static_node(sim::node_id(0), Vec2{0, 0}, 0);
   sim.run_until(sim::time_at(10.0));
   REQUIRE(rec.emptied.size() == 1);
   CHECK(sim::to_seconds(radio.stats(sim::node_id(0)).died_at) == Approx(4.0));
@@ -263,10 +263,10 @@ TEST_CASE("loss draws of one link do not depend on other nodes", "[net]") {
     Recorder rec;
     rec.sim = &sim;
     radio.set_listener(&rec);
-    radio.add_static_node(sim::node_id(0), Vec2{0, 0});
-    radio.add_static_node(sim::node_id(1), Vec2{0.05, 0});
+    radio.add_static_node(sim::node_id(0), Vec2{0, 0}, 0);
+    radio.add_static_node(sim::node_id(1), Vec2{0.05, 0}, 1);
     for (int i = 0; i < extra_nodes; ++i)
-      radio.add_static_node(sim::node_id(2 + i), Vec2{0.01 * i, 0.02});
+      radio.add_static_node(sim::node_id(2 + i), Vec2{0.01 * i, 0.02}, 2 + i);
     std::vector<double> got;
     for (int k = 0; k < 64; ++k) radio.broadcast(sim::node_id(0), 0.1, beacon(sim::node_id(0)));
     sim.run();
