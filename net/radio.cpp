@@ -9,6 +9,7 @@ namespace masnet::net {
 namespace {
 constexpr std::uint64_t kLossPurpose = sim::purpose("radio.loss");
 constexpr std::uint64_t kJitterPurpose = sim::purpose("radio.jitter");
+constexpr std::uint32_t kNoHotIndex = 0xFFFFFFFFu;
 }  // namespace
 
 Radio::Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t seed)
@@ -20,27 +21,32 @@ Radio::Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t
 
 void Radio::add_static_node(NodeId id, const Vec2& position, std::uint64_t random_key) {
   MASNET_ASSERT(sim::index(id) == nodes_.size(), "node ids are dense from 0");
-  nodes_.push_back(Node{});
-  nodes_.back().position = position;
-  nodes_.back().random_key = random_key;
-  nodes_.back().idle_accounted_to = simulator_.now();
-  counters_.resize(nodes_.size() * kMessageTypeCount);
+  Node node;
+  node.position = position;
+  node.random_key = random_key;
+  node.hot = kNoHotIndex;
+  node.idle_accounted_to = simulator_.now();
+  nodes_.push_back(node);
+  tx_counters_.resize(nodes_.size() * kMessageTypeCount);
   static_ids_.push_back(id);
   static_positions_.push_back(position);
-  static_index_dirty_ = true;
-  if (params_.energy.battery_j > 0 && params_.energy.idle_power_w > 0) schedule_depletion(id);
+  index_dirty_ = true;
+  if (battery_limited() && params_.energy.idle_power_w > 0) schedule_depletion(id);
 }
 
 void Radio::add_mobile_node(NodeId id, std::uint64_t random_key) {
   MASNET_ASSERT(sim::index(id) == nodes_.size(), "node ids are dense from 0");
-  nodes_.push_back(Node{});
-  nodes_.back().mobile = true;
-  nodes_.back().random_key = random_key;
-  nodes_.back().idle_accounted_to = simulator_.now();
-  counters_.resize(nodes_.size() * kMessageTypeCount);
+  Node node;
+  node.mobile = true;
+  node.random_key = random_key;
+  node.hot = kNoHotIndex;
+  node.idle_accounted_to = simulator_.now();
+  nodes_.push_back(node);
+  tx_counters_.resize(nodes_.size() * kMessageTypeCount);
   mobile_ids_.push_back(id);
+  index_dirty_ = true;
   mobile_index_valid_ = false;
-  if (params_.energy.battery_j > 0 && params_.energy.idle_power_w > 0) schedule_depletion(id);
+  if (battery_limited() && params_.energy.idle_power_w > 0) schedule_depletion(id);
 }
 
 void Radio::set_interest(NodeId node, std::uint32_t mask) { nodes_[sim::index(node)].interest = mask; }
@@ -67,9 +73,51 @@ bool Radio::unicast(NodeId source, NodeId destination, Payload payload) {
   return transmit(source, destination, distance, std::move(payload));
 }
 
-void Radio::prepare_static_index() {
+void Radio::prepare_index() {
+  // Keep what each node has heard across a rebuild (nodes added after the first frame).
+  const std::size_t n_nodes = nodes_.size(), types = kMessageTypeCount;
+  std::vector<std::uint64_t> heard(n_nodes, 0), overheard(n_nodes, 0), count(n_nodes * types, 0), bytes(n_nodes * types, 0);
+  const std::size_t old_stride = heard_bytes_.size();
+  for (std::size_t n = 0; n < n_nodes; ++n) {
+    const std::uint32_t hot = nodes_[n].hot;
+    if (hot == kNoHotIndex) continue;
+    heard[n] = heard_bytes_[hot];
+    overheard[n] = overheard_count_[hot];
+    for (std::size_t t = 0; t < types; ++t) {
+      count[n * types + t] = rx_count_[t * old_stride + hot];
+      bytes[n * types + t] = rx_bytes_[t * old_stride + hot];
+    }
+  }
   static_grid_.build(static_positions_, static_ids_);
-  static_index_dirty_ = false;
+  const std::vector<NodeId>& slots = static_grid_.ids();
+  for (std::uint32_t k = 0; k < slots.size(); ++k) nodes_[sim::index(slots[k])].hot = k;
+  for (std::size_t m = 0; m < mobile_ids_.size(); ++m)
+    nodes_[sim::index(mobile_ids_[m])].hot = static_cast<std::uint32_t>(slots.size() + m);
+  heard_bytes_.assign(n_nodes, 0);
+  overheard_count_.assign(n_nodes, 0);
+  rx_count_.assign(n_nodes * types, 0);
+  rx_bytes_.assign(n_nodes * types, 0);
+  for (std::size_t n = 0; n < n_nodes; ++n) {
+    const std::uint32_t hot = nodes_[n].hot;
+    heard_bytes_[hot] = heard[n];
+    overheard_count_[hot] = overheard[n];
+    for (std::size_t t = 0; t < types; ++t) {
+      rx_count_[t * n_nodes + hot] = count[n * types + t];
+      rx_bytes_[t * n_nodes + hot] = bytes[n * types + t];
+    }
+  }
+  index_dirty_ = false;
+}
+
+TypeCounters Radio::counters(NodeId node, MessageType type) const {
+  const auto t = static_cast<std::size_t>(type);
+  TypeCounters c = tx_counters_[sim::index(node) * kMessageTypeCount + t];
+  const std::uint32_t hot = nodes_[sim::index(node)].hot;
+  if (hot != kNoHotIndex) {
+    c.rx_count = rx_count_[t * heard_bytes_.size() + hot];
+    c.rx_bytes = rx_bytes_[t * heard_bytes_.size() + hot];
+  }
+  return c;
 }
 
 void Radio::prepare_mobile_index() {
@@ -85,53 +133,53 @@ void Radio::prepare_mobile_index() {
   mobile_index_valid_ = true;
 }
 
-template <class Visit>
-void Radio::for_each_node_within(NodeId source, const Vec2& center, double range, Visit&& visit) {
-  if (static_index_dirty_) prepare_static_index();
-  static_grid_.for_each_within(center, range, [&](NodeId id, const Vec2&, double) {
-    if (id != source) visit(id);
-  });
-  for_each_mobile_within(center, range, [&](NodeId id) {
-    if (id != source) visit(id);
-  });
-}
-
 void Radio::accrue_idle(Node& node) {
-  if (params_.energy.idle_power_w <= 0 || !node.stats.alive) return;
+  if (params_.energy.idle_power_w <= 0 || !node.alive) return;
   const sim::Time now = simulator_.now();
-  node.stats.energy_idle_j +=
-      params_.energy.idle_power_w * sim::to_seconds(now - node.idle_accounted_to);
+  node.energy_idle_j += params_.energy.idle_power_w * sim::to_seconds(now - node.idle_accounted_to);
   node.idle_accounted_to = now;
 }
 
-const NodeRadioStats& Radio::stats(NodeId node) {
-  accrue_idle(nodes_[sim::index(node)]);
-  return nodes_[sim::index(node)].stats;
+NodeRadioStats Radio::stats(NodeId node) {
+  if (index_dirty_) prepare_index();
+  Node& n = nodes_[sim::index(node)];
+  accrue_idle(n);
+  NodeRadioStats s;
+  s.heard_bytes = heard_bytes_[n.hot];
+  s.overheard_count = overheard_count_[n.hot];
+  s.lost_count = n.lost_count;
+  s.unreachable_count = n.unreachable_count;
+  s.refused_count = n.refused_count;
+  s.energy_tx_j = n.energy_tx_j;
+  s.energy_rx_j = rx_energy_j(params_.energy, 8.0 * static_cast<double>(s.heard_bytes));
+  s.energy_idle_j = n.energy_idle_j;
+  s.alive = n.alive;
+  s.died_at = n.died_at;
+  return s;
 }
 
-bool Radio::charge(NodeId id, double energy_j, bool is_tx) {
+double Radio::consumed_j(const Node& node) const {
+  return node.energy_tx_j + node.energy_idle_j +
+         rx_energy_j(params_.energy, 8.0 * static_cast<double>(heard_bytes_[node.hot]));
+}
+
+bool Radio::afford(NodeId id, double energy_j) {
+  // Only with a battery: a node that cannot pay for a frame is empty and stops.
   Node& node = nodes_[sim::index(id)];
-  NodeRadioStats& s = node.stats;
-  if (params_.energy.battery_j > 0) {
-    accrue_idle(node);
-    const double remaining =
-        params_.energy.battery_j - (s.energy_tx_j + s.energy_rx_j + s.energy_idle_j);
-    if (remaining < energy_j) {  // cannot afford this frame: the battery is empty
-      kill(id);
-      return false;
-    }
+  if (!node.alive) return false;
+  accrue_idle(node);
+  if (params_.energy.battery_j - consumed_j(node) < energy_j) {
+    kill(id);
+    return false;
   }
-  (is_tx ? s.energy_tx_j : s.energy_rx_j) += energy_j;
-  (is_tx ? total_tx_j_ : total_rx_j_) += energy_j;
-  if (params_.energy.battery_j > 0 && params_.energy.idle_power_w > 0) schedule_depletion(id);
   return true;
 }
 
 void Radio::schedule_depletion(NodeId id) {
   Node& node = nodes_[sim::index(id)];
-  const NodeRadioStats& s = node.stats;
   const double remaining =
-      params_.energy.battery_j - (s.energy_tx_j + s.energy_rx_j + s.energy_idle_j);
+      params_.energy.battery_j - node.energy_tx_j - node.energy_idle_j -
+      (node.hot == kNoHotIndex ? 0.0 : rx_energy_j(params_.energy, 8.0 * static_cast<double>(heard_bytes_[node.hot])));
   simulator_.cancel(node.depletion_event);
   // The idle drain empties the battery at a known time: a scheduled event, not a poll.
   const sim::Duration left = sim::seconds(std::max(remaining, 0.0) / params_.energy.idle_power_w);
@@ -141,98 +189,131 @@ void Radio::schedule_depletion(NodeId id) {
   });
 }
 
-void Radio::kill(NodeId id) {
+void Radio::kill(NodeId id) {  // the battery is empty
   Node& node = nodes_[sim::index(id)];
-  if (!node.stats.alive) return;
-  node.stats.alive = false;
-  node.stats.died_at = simulator_.now();
+  if (!node.alive) return;
+  node.alive = false;
+  node.died_at = simulator_.now();
   simulator_.cancel(node.depletion_event);
   if (listener_) listener_->on_battery_empty(id);
 }
 
+std::uint32_t Radio::new_flight() {
+  if (!free_flights_.empty()) {
+    const std::uint32_t flight = free_flights_.back();
+    free_flights_.pop_back();
+    return flight;
+  }
+  flights_.emplace_back();
+  return static_cast<std::uint32_t>(flights_.size() - 1);
+}
+
 bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& payload) {
-  Node& sender = nodes_[sim::index(source)];
-  if (!sender.stats.alive) {
-    ++sender.stats.refused_count;
+  if (index_dirty_) prepare_index();
+  Node& src = nodes_[sim::index(source)];
+  if (!src.alive) {
+    ++src.refused_count;
     return false;
   }
+  const bool battery = battery_limited();
   range = std::min(range, params_.max_range);
   const MessageType type = type_of(payload);
   const std::uint32_t bytes = size_bytes(payload, params_.sizes);
   const double bits = 8.0 * bytes;
-  if (!charge(source, tx_energy_j(params_.energy, bits, range * params_.meters_per_unit), true)) {
-    ++nodes_[sim::index(source)].stats.refused_count;
+  const double tx_j = tx_energy_j(params_.energy, bits, range * params_.meters_per_unit);
+  if (battery && !afford(source, tx_j)) {
+    ++src.refused_count;
     return false;
   }
-  Node& src = nodes_[sim::index(source)];
-  TypeCounters& tx = counters_[sim::index(source) * kMessageTypeCount + static_cast<std::size_t>(type)];
+  src.energy_tx_j += tx_j;
+  total_tx_j_ += tx_j;
+  if (battery && params_.energy.idle_power_w > 0) schedule_depletion(source);
+  const auto type_index = static_cast<std::size_t>(type);
+  TypeCounters& tx = tx_counters_[sim::index(source) * kMessageTypeCount + type_index];
   ++tx.tx_count;
   tx.tx_bytes += bytes;
-  ++totals_[static_cast<std::size_t>(type)].tx_count;
-  totals_[static_cast<std::size_t>(type)].tx_bytes += bytes;
+  ++totals_[type_index].tx_count;
+  totals_[type_index].tx_bytes += bytes;
   const std::uint64_t frame_number = src.frames_sent++;
 
   const sim::Time now = simulator_.now();
   const sim::Duration air = airtime(bytes);
   sim::Time start = now;
-  if (params_.level == RadioLevel::airtime) {
+  if (params_.level == RadioLevel::airtime) {  // this transmitter's frames queue up
     start = std::max(now, src.busy_until);
     src.busy_until = start + air;
   }
   const sim::Time arrival = start + air + sim::seconds(params_.latency_s);
 
+  // Who hears the frame, decided by positions now. Every node in range pays E_rx for it,
+  // addressed or not; without a battery nobody can die of it, so overhearing is two
+  // counter increments on contiguous memory.
   const double rx_j = rx_energy_j(params_.energy, bits);
   const std::uint32_t type_bit = 1u << static_cast<unsigned>(type);
   std::vector<NodeId>& receivers = scratch_receivers_;
   receivers.clear();
-  auto hear = [&](NodeId id, bool addressed) {
+  std::uint64_t hearers = 0;
+  std::uint64_t* const heard = heard_bytes_.data();
+  std::uint64_t* const overheard = overheard_count_.data();
+  std::uint64_t* const rx_count = rx_count_.data() + type_index * heard_bytes_.size();
+  std::uint64_t* const rx_bytes = rx_bytes_.data() + type_index * heard_bytes_.size();
+  std::uint64_t received = 0;
+  auto receive = [&](NodeId id, std::uint32_t hot) {
+    if (battery && !afford(id, rx_j)) return;
+    heard[hot] += bytes;
+    ++hearers;
     Node& node = nodes_[sim::index(id)];
-    if (!node.stats.alive || !charge(id, rx_j, false)) return;
-    if (!addressed) {  // every node in range pays for the frame, addressed or not
-      ++node.stats.overheard_count;
-      node.stats.overheard_bytes += bytes;
-      return;
-    }
     if (params_.loss > 0 &&
-        sim::keyed_uniform01(seed_, kLossPurpose, src.random_key, node.random_key,
-                             frame_number) < params_.loss) {
-      ++node.stats.lost_count;
+        sim::keyed_uniform01(seed_, kLossPurpose, src.random_key, node.random_key, frame_number) < params_.loss) {
+      ++node.lost_count;
       return;
     }
-    TypeCounters& rx =
-        counters_[sim::index(id) * kMessageTypeCount + static_cast<std::size_t>(type)];
-    ++rx.rx_count;
-    rx.rx_bytes += bytes;
-    ++totals_[static_cast<std::size_t>(type)].rx_count;
-    totals_[static_cast<std::size_t>(type)].rx_bytes += bytes;
+    ++rx_count[hot];
+    rx_bytes[hot] += bytes;
+    ++received;
     if (node.interest & type_bit) receivers.push_back(id);
+  };
+  auto overhear = [&](NodeId id, std::uint32_t hot) {
+    if (battery && !afford(id, rx_j)) return;
+    heard[hot] += bytes;
+    ++overheard[hot];
+    ++hearers;
   };
 
   const Vec2 center = position(source);
-  const bool is_broadcast = destination == sim::kNoNode;
-  for_each_node_within(source, center, range, [&](NodeId id) {
-    if (id != destination) hear(id, is_broadcast);
-  });
-  if (!is_broadcast) {
+  const NodeId* const slots = static_grid_.ids().data();
+  // Hot indices compared instead of ids: the inner loops load nothing but coordinates.
+  const std::uint32_t source_hot = src.hot;
+  const std::uint32_t destination_hot =
+      destination == sim::kNoNode ? kNoHotIndex : nodes_[sim::index(destination)].hot;
+  if (destination == sim::kNoNode) {
+    static_grid_.for_each_slot_within(center, range, [&](std::uint32_t k, double) {
+      if (k != source_hot) receive(slots[k], k);
+    });
+    for_each_mobile_within(center, range, [&](NodeId id) {
+      if (id != source) receive(id, nodes_[sim::index(id)].hot);
+    });
+  } else {
+    static_grid_.for_each_slot_within(center, range, [&](std::uint32_t k, double) {
+      if (k != source_hot && k != destination_hot) overhear(slots[k], k);
+    });
+    for_each_mobile_within(center, range, [&](NodeId id) {
+      if (id != source && id != destination) overhear(id, nodes_[sim::index(id)].hot);
+    });
     // The addressee is decided by its distance, not by the grid's rounding at the boundary.
-    if ((position(destination) - center).norm() <= range) {
-      hear(destination, true);
-    } else {
-      ++src.stats.unreachable_count;
-    }
+    if ((position(destination) - center).norm() <= range)
+      receive(destination, destination_hot);
+    else
+      ++src.unreachable_count;
   }
+  totals_[type_index].rx_count += received;
+  totals_[type_index].rx_bytes += received * bytes;
+  total_heard_bytes_ += hearers * bytes;
   if (receivers.empty()) return true;
   // Delivery order is by node id, whatever the grid's layout.
-  std::sort(receivers.begin(), receivers.end());
+  if (receivers.size() > 1) std::sort(receivers.begin(), receivers.end());
 
-  std::uint32_t flight;
-  if (!free_flights_.empty()) {
-    flight = free_flights_.back();
-    free_flights_.pop_back();
-  } else {
-    flight = static_cast<std::uint32_t>(flights_.size());
-    flights_.emplace_back();
-  }
+  const std::uint32_t flight = new_flight();
   InFlight& f = flights_[flight];
   f.frame.source = source;
   f.frame.destination = destination;
@@ -242,7 +323,6 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   f.frame.sent_at = now;
   f.frame.payload = std::move(payload);
   f.receivers.assign(receivers.begin(), receivers.end());
-
   if (params_.jitter_s <= 0) {
     // One event delivers to every receiver in id order: the same order separate events with
     // consecutive sequence numbers would give, at a fraction of the cost.
@@ -253,15 +333,14 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     for (NodeId id : f.receivers) {
       const double u = sim::keyed_uniform01(seed_, kJitterPurpose, src.random_key,
                                             nodes_[sim::index(id)].random_key, frame_number);
-      simulator_.at(arrival + sim::seconds(u * params_.jitter_s),
-                    [this, flight, id] { deliver_one(flight, id); });
+      simulator_.at(arrival + sim::seconds(u * params_.jitter_s), [this, flight, id] { deliver_one(flight, id); });
     }
   }
   return true;
 }
 
 void Radio::hand_over(const Frame& frame, NodeId receiver) {
-  if (!nodes_[sim::index(receiver)].stats.alive) return;  // died while the frame was in the air
+  if (!nodes_[sim::index(receiver)].alive) return;  // died while the frame was in the air
   sim::Fingerprint& fp = simulator_.fingerprint();
   fp.mix((std::uint64_t{sim::index(frame.source)} << 32) | sim::index(receiver));
   fp.mix((std::uint64_t{static_cast<std::uint8_t>(frame.type)} << 32) | frame.size_bytes);
@@ -271,15 +350,13 @@ void Radio::hand_over(const Frame& frame, NodeId receiver) {
 void Radio::deliver(std::uint32_t flight) {
   const InFlight& f = flights_[flight];
   for (NodeId id : f.receivers) hand_over(f.frame, id);
-  release(flight);
+  free_flights_.push_back(flight);
 }
 
 void Radio::deliver_one(std::uint32_t flight, NodeId id) {
   InFlight& f = flights_[flight];
   hand_over(f.frame, id);
-  if (--f.pending == 0) release(flight);
+  if (--f.pending == 0) free_flights_.push_back(flight);
 }
-
-void Radio::release(std::uint32_t flight) { free_flights_.push_back(flight); }
 
 }  // namespace masnet::net

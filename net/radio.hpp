@@ -61,7 +61,8 @@ struct TypeCounters {
 
 /// Per node totals beyond the per-type counters.
 struct NodeRadioStats {
-  std::uint64_t overheard_count = 0, overheard_bytes = 0;  ///< unicasts heard by others
+  std::uint64_t heard_bytes = 0;        ///< everything that reached it: addressed, overheard, lost
+  std::uint64_t overheard_count = 0;    ///< unicasts to others that it heard (and paid for)
   std::uint64_t lost_count = 0;         ///< receptions lost to `loss`
   std::uint64_t unreachable_count = 0;  ///< unicasts whose addressee was out of range
   std::uint64_t refused_count = 0;      ///< sends refused: battery empty
@@ -78,9 +79,9 @@ class Radio {
   Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t seed);
 
   /// Registers node ids densely from 0: a static node at `position`, or a mobile node whose
-  /// position `mobile_positions` answers.
-  /// `random_key` keys this node's loss and jitter draws; give a key that does not change
-  /// when other nodes are added (the world uses role and index).
+  /// position `mobile_positions` answers. `random_key` keys this node's loss and jitter
+  /// draws; give a key that does not change when other nodes are added (the world uses
+  /// role and index).
   void add_static_node(NodeId id, const Vec2& position, std::uint64_t random_key);
   void add_mobile_node(NodeId id, std::uint64_t random_key);
   void set_listener(RadioListener* listener) { listener_ = listener; }
@@ -105,38 +106,47 @@ class Radio {
   /// for recorders and the oracle; not a radio operation).
   template <class Visit>
   void for_each_mobile_within(const Vec2& center, double range, Visit&& visit);
+
   std::size_t node_count() const { return nodes_.size(); }
   const RadioParams& params() const { return params_; }
-  const TypeCounters& counters(NodeId node, MessageType type) const {
-    return counters_[sim::index(node) * kMessageTypeCount + static_cast<std::size_t>(type)];
-  }
+  /// Frames of one type sent and received (as addressee) by `node`.
+  TypeCounters counters(NodeId node, MessageType type) const;
   /// Frames by type over all nodes (tx: transmissions; rx: receptions by addressees).
   const TypeCounters& totals(MessageType type) const { return totals_[static_cast<std::size_t>(type)]; }
   /// Radio energy booked so far over all nodes (idle drain excluded), joules.
   double total_tx_energy_j() const { return total_tx_j_; }
-  double total_rx_energy_j() const { return total_rx_j_; }
-  /// Per-node stats with idle energy brought up to now.
-  const NodeRadioStats& stats(NodeId node);
+  double total_rx_energy_j() const {
+    return rx_energy_j(params_.energy, 8.0 * static_cast<double>(total_heard_bytes_));
+  }
+  /// Per-node stats, idle energy brought up to now.
+  NodeRadioStats stats(NodeId node);
   double energy_j(NodeId node) {
-    const NodeRadioStats& s = stats(node);
+    const NodeRadioStats s = stats(node);
     return s.energy_tx_j + s.energy_rx_j + s.energy_idle_j;
   }
-  bool alive(NodeId node) const { return nodes_[sim::index(node)].stats.alive; }
+  bool alive(NodeId node) const { return nodes_[sim::index(node)].alive; }
 
   /// Airtime of a frame of `bytes`.
   sim::Duration airtime(std::uint32_t bytes) const;
 
  private:
+  // Cold per-node state. The counters touched by every hearer of a frame live apart in
+  // `heard_bytes_` / `overheard_count_`, indexed by a "hot index": static nodes by their
+  // slot in the spatial grid (so a range query walks contiguous memory), mobile nodes after.
   struct Node {
     Vec2 position{0, 0};  // static nodes only
     bool mobile = false;
+    bool alive = true;
     std::uint32_t interest = 0xFFFFFFFFu;
-    std::uint64_t frames_sent = 0;
+    std::uint32_t hot = 0;
     std::uint64_t random_key = 0;
+    std::uint64_t frames_sent = 0;
+    std::uint64_t lost_count = 0, unreachable_count = 0, refused_count = 0;
+    double energy_tx_j = 0.0, energy_idle_j = 0.0;
     sim::Time busy_until{};
     sim::Time idle_accounted_to{};
+    sim::Time died_at = sim::kTimeMax;
     sim::EventId depletion_event;
-    NodeRadioStats stats;
   };
   struct InFlight {
     Frame frame;
@@ -145,18 +155,18 @@ class Radio {
   };
 
   bool transmit(NodeId source, NodeId destination, double range, Payload&& payload);
-  void prepare_static_index();
+  void prepare_index();
   void prepare_mobile_index();
-  template <class Visit>
-  void for_each_node_within(NodeId source, const Vec2& center, double range, Visit&& visit);
-  bool charge(NodeId node, double energy_j, bool is_tx);
+  bool battery_limited() const { return params_.energy.battery_j > 0; }
+  double consumed_j(const Node& node) const;
+  bool afford(NodeId node, double energy_j);
   void accrue_idle(Node& node);
   void schedule_depletion(NodeId id);
   void kill(NodeId id);
   void hand_over(const Frame& frame, NodeId receiver);
   void deliver(std::uint32_t flight);
   void deliver_one(std::uint32_t flight, NodeId receiver);
-  void release(std::uint32_t flight);
+  std::uint32_t new_flight();
 
   sim::Simulator& simulator_;
   RadioParams params_;
@@ -165,13 +175,18 @@ class Radio {
   const MobilePositions* mobile_ = nullptr;
 
   std::vector<Node> nodes_;
-  std::vector<TypeCounters> counters_;
+  std::vector<TypeCounters> tx_counters_;  // [node][type]; only tx fields are used
   std::array<TypeCounters, kMessageTypeCount> totals_{};
-  double total_tx_j_ = 0.0, total_rx_j_ = 0.0;
+  double total_tx_j_ = 0.0;
+  std::uint64_t total_heard_bytes_ = 0;
+  // E_rx is linear in bits, so a node's receive energy is E_elec·8·(bytes it heard).
+  std::vector<std::uint64_t> heard_bytes_, overheard_count_;  // [hot]
+  std::vector<std::uint64_t> rx_count_, rx_bytes_;            // [type][hot]
+
   std::vector<NodeId> static_ids_, mobile_ids_;
   std::vector<Vec2> static_positions_;
   SpatialGrid static_grid_, mobile_grid_;
-  bool static_index_dirty_ = true;
+  bool index_dirty_ = true;
   sim::Time mobile_index_time_{};
   bool mobile_index_valid_ = false;
   double margin_speed_ = 0.0;  // speed bound since the mobile index was built

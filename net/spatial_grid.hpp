@@ -20,16 +20,32 @@ class SpatialGrid {
 
   std::size_t size() const { return ids_.size(); }
   double cell_size() const { return cell_; }
+  /// Points in cell order: slot k holds ids()[k]. Callers may keep per-point data by slot
+  /// so that a range query touches contiguous memory.
+  const std::vector<sim::NodeId>& ids() const { return ids_; }
 
   /// Calls `visit(id, position, squared_distance)` for every indexed point within `radius`
   /// of `center` (inclusive), in cell order.
   template <class Visit>
   void for_each_within(const Vec2& center, double radius, Visit&& visit) const {
+    for_each_slot_within(center, radius, [&](std::uint32_t k, double d2) {
+      visit(ids_[k], Vec2{xs_[k], ys_[k]}, d2);
+    });
+  }
+
+  /// Calls `visit(slot, squared_distance)` for every point within `radius` of `center`
+  /// (inclusive), slot by slot in cell order: one contiguous run of slots per grid row.
+  template <class Visit>
+  void for_each_slot_within(const Vec2& center, double radius, Visit&& visit) const {
     if (ids_.empty() || !(radius >= 0.0)) return;
     const double r2 = radius * radius;
     const double cx = center.x(), cy = center.y();
     const int row_lo = row_of(cy - radius);
     const int row_hi = row_of(cy + radius);
+    // Local pointers: the visitor's stores must not make the compiler reload them.
+    const double* const xs = xs_.data();
+    const double* const ys = ys_.data();
+    const std::uint32_t* const starts = cell_start_.data();
     for (int row = row_lo; row <= row_hi; ++row) {
       // Nearest y of this row to the centre bounds the x-extent of the disk in the row.
       const double row_y0 = y0_ + row * cell_, row_y1 = row_y0 + cell_;
@@ -39,30 +55,29 @@ class SpatialGrid {
       const double half = std::sqrt(half2);
       const int col_lo = col_of(cx - half);
       const int col_hi = col_of(cx + half);
-      const std::uint32_t begin = cell_start_[row * nx_ + col_lo];
-      const std::uint32_t end = cell_start_[row * nx_ + col_hi + 1];
+      const std::uint32_t begin = starts[row * nx_ + col_lo];
+      const std::uint32_t end = starts[row * nx_ + col_hi + 1];
       for (std::uint32_t k = begin; k < end; ++k) {
-        const double ddx = xs_[k] - cx, ddy = ys_[k] - cy;
+        const double ddx = xs[k] - cx, ddy = ys[k] - cy;
         const double d2 = ddx * ddx + ddy * ddy;
-        if (d2 <= r2) visit(ids_[k], Vec2{xs_[k], ys_[k]}, d2);
+        if (d2 <= r2) visit(k, d2);
       }
     }
   }
 
  private:
-  int clamp_row(int r) const { return r < 0 ? 0 : (r >= ny_ ? ny_ - 1 : r); }
-  int clamp_col(int c) const { return c < 0 ? 0 : (c >= nx_ ? nx_ - 1 : c); }
   // Clamped in double first, so a huge radius cannot overflow the int conversion.
+  // A multiply, not a divide: these run twice per grid row of every query.
   int row_of(double y) const {
-    const double r = std::floor((y - y0_) / cell_);
-    return r <= 0.0 ? 0 : (r >= ny_ - 1 ? ny_ - 1 : static_cast<int>(r));
+    const double r = (y - y0_) * inv_cell_;
+    return r < 1.0 ? 0 : (r >= ny_ - 1 ? ny_ - 1 : static_cast<int>(r));
   }
   int col_of(double x) const {
-    const double c = std::floor((x - x0_) / cell_);
-    return c <= 0.0 ? 0 : (c >= nx_ - 1 ? nx_ - 1 : static_cast<int>(c));
+    const double c = (x - x0_) * inv_cell_;
+    return c < 1.0 ? 0 : (c >= nx_ - 1 ? nx_ - 1 : static_cast<int>(c));
   }
 
-  double x0_ = 0, y0_ = 0, cell_ = 1;
+  double x0_ = 0, y0_ = 0, cell_ = 1, inv_cell_ = 1;
   int nx_ = 1, ny_ = 1;
   std::vector<std::uint32_t> cell_start_;  // nx*ny + 1 offsets
   std::vector<double> xs_, ys_;

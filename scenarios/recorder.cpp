@@ -232,7 +232,7 @@ void Recorder::write_updates(const std::string& path) const {
 void Recorder::write_nodes(const std::string& path) const {
   auto out = fmt::output_file(path);
   out.print("node,role,index,x,y,alive,died_at_s,energy_j,energy_tx_j,energy_rx_j,energy_idle_j,tx_count,tx_bytes,"
-            "rx_count,rx_bytes,overheard_count,overheard_bytes,lost_count,unreachable_count,refused_count");
+            "rx_count,rx_bytes,overheard_count,heard_bytes,lost_count,unreachable_count,refused_count");
   for (std::size_t t = 0; t < net::kMessageTypeCount; ++t) out.print(",tx_{0},rx_{0}", net::kMessageTypeNames[t]);
   out.print("\n");
   net::Radio& radio = world_.radio();
@@ -253,7 +253,7 @@ void Recorder::write_nodes(const std::string& path) const {
     out.print("{},{},{},{},{},{:d},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", n, robot ? "robot" : "sensor", index,
               p.x(), p.y(), s.alive, s.alive ? std::string() : fmt::format("{}", sim::to_seconds(s.died_at)),
               s.energy_tx_j + s.energy_rx_j + s.energy_idle_j, s.energy_tx_j, s.energy_rx_j, s.energy_idle_j, tx, txb,
-              rx, rxb, s.overheard_count, s.overheard_bytes, s.lost_count, s.unreachable_count, s.refused_count);
+              rx, rxb, s.overheard_count, s.heard_bytes, s.lost_count, s.unreachable_count, s.refused_count);
     for (std::size_t t = 0; t < net::kMessageTypeCount; ++t) {
       const auto& c = radio.counters(id, static_cast<net::MessageType>(t));
       out.print(",{},{}", c.tx_count, c.rx_count);
