@@ -1,0 +1,122 @@
+// The protocols running in a real world (radio, sensors, robots), judged against the oracle.
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+
+#include "agents/world.hpp"
+#include "sim/random.hpp"
+
+using namespace masnet;
+using agents::World;
+using agents::WorldDef;
+using net::Vec2;
+
+namespace {
+
+// Static robots (k = 0: a new target never moves them) at random places, a 20 × 20 sensor grid.
+WorldDef layout(std::uint64_t seed, protocols::StopCriterion criterion, double loss = 0.0) {
+  WorldDef def;
+  def.seed = seed;
+  def.domain = protocols::rectangle(0, 0, 1, 1);
+  for (int j = 0; j < 20; ++j)
+    for (int i = 0; i < 20; ++i) def.sensors.push_back({Vec2{(i + 0.5) / 20, (j + 0.5) / 20}, 1.0 / 400});
+  sim::RandomStream rng(seed);
+  const int robots = 5 + static_cast<int>(rng.below(11));
+  for (int r = 0; r < robots; ++r) def.robots.push_back(Vec2{rng.uniform(0.02, 0.98), rng.uniform(0.02, 0.98)});
+  def.motion.k = 0.0;
+  def.field.kind = agents::FieldKind::uniform;
+  def.radio.max_range = 1.5;
+  def.radio.loss = loss;
+  def.protocol.kind = protocols::ProtocolKind::radius_doubling;
+  def.protocol.criterion = criterion;
+  def.protocol.decay = {3, 0.02, 0.02};
+  return def;
+}
+
+// Counts updates and whether each one's neighbour set equals the true one when it ends.
+struct Judge : agents::WorldObserver {
+  World* world = nullptr;
+  std::uint64_t updates = 0, correct = 0, truncated = 0;
+  std::uint32_t max_rounds = 0;
+  void on_update(std::size_t robot, const protocols::UpdateRecord& r) override {
+    ++updates;
+    correct += world->oracle_cell(robot).neighbours == r.neighbours ? 1 : 0;
+    truncated += r.truncated ? 1 : 0;
+    max_rounds = std::max(max_rounds, r.rounds);
+  }
+};
+
+Judge run(const WorldDef& def, double seconds) {
+  sim::Simulator simulator;
+  World world(simulator, def);
+  Judge judge;
+  judge.world = &world;
+  world.set_observer(&judge);
+  world.start();
+  simulator.run_until(sim::time_at(seconds));
+  return judge;
+}
+
+}  // namespace
+
+TEST_CASE("with the vertex criterion and no loss every update finds exactly the true neighbours",
+          "[agents]") {
+  std::uint64_t updates = 0;
+  for (std::uint64_t seed = 1; seed <= 24; ++seed) {
+    const Judge j = run(layout(seed, protocols::StopCriterion::vertices), 0.2);
+    INFO("layout " << seed);
+    CHECK(j.updates > 0);
+    CHECK(j.correct == j.updates);
+    CHECK(j.truncated == 0);
+    updates += j.updates;
+  }
+  CHECK(updates > 24 * 5 * 15);
+}
+
+TEST_CASE("the seed's sensor criterion is measured, not assumed, against the oracle", "[agents]") {
+  std::uint64_t updates = 0, correct = 0;
+  for (std::uint64_t seed = 1; seed <= 24; ++seed) {
+    const Judge j = run(layout(seed, protocols::StopCriterion::sensors), 0.2);
+    updates += j.updates;
+    correct += j.correct;
+  }
+  const double rate = static_cast<double>(correct) / static_cast<double>(updates);
+  WARN("sensor criterion: " << correct << " of " << updates << " updates had the true neighbour set ("
+                            << rate * 100 << " %)");
+  CHECK(updates > 0);
+  CHECK(rate <= 1.0);
+}
+
+TEST_CASE("loss lowers cell correctness but every update still terminates", "[agents]") {
+  std::uint64_t lossless_updates = 0, lossless_correct = 0, lossy_updates = 0, lossy_correct = 0;
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+    const Judge clean = run(layout(seed, protocols::StopCriterion::vertices), 0.3);
+    const Judge lossy = run(layout(seed, protocols::StopCriterion::vertices, 0.4), 0.3);
+    lossless_updates += clean.updates;
+    lossless_correct += clean.correct;
+    lossy_updates += lossy.updates;
+    lossy_correct += lossy.correct;
+    // Every robot keeps completing updates: rounds are bounded by the cap at max_range.
+    CHECK(lossy.updates >= clean.updates * 8 / 10);
+    CHECK(lossy.max_rounds <= 12);
+  }
+  const double clean_rate = static_cast<double>(lossless_correct) / static_cast<double>(lossless_updates);
+  const double lossy_rate = static_cast<double>(lossy_correct) / static_cast<double>(lossy_updates);
+  WARN("correctness without loss " << clean_rate << ", with loss 0.4: " << lossy_rate);
+  CHECK(clean_rate == 1.0);
+  CHECK(lossy_rate < clean_rate);
+}
+
+TEST_CASE("the same world and seed give the same fingerprint; another seed a different one", "[agents]") {
+  auto fingerprint = [](std::uint64_t seed) {
+    WorldDef def = layout(3, protocols::StopCriterion::sensors, 0.1);
+    def.seed = seed;
+    sim::Simulator simulator;
+    World world(simulator, def);
+    world.start();
+    simulator.run_until(sim::time_at(0.1));
+    return simulator.fingerprint().value();
+  };
+  CHECK(fingerprint(7) == fingerprint(7));
+  CHECK(fingerprint(7) != fingerprint(8));
+}
