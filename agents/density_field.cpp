@@ -10,6 +10,7 @@ std::vector<Vec2> AnalyticField::sources_at(double t_s) const {
   std::vector<Vec2> out;
   for (const PathDef& p : def_.targets) out.push_back(position_on(p, t_s));
   for (const GaussianBump& b : def_.bumps) out.push_back(position_on(b.path, t_s));
+  for (const SourceDef& s : def_.sources) out.push_back(position_on(s.path, t_s));
   return out;
 }
 

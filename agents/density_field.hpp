@@ -2,9 +2,11 @@
 // Density fields ρ(s, t) >= 0 sampled by the sensors (SPEC §2): acoustic targets (paper
 // eq. 3), Gaussian bumps, uniform. The diffusion PDE lives in diffusion_field.hpp and is
 // advanced by the world. See docs/field-models.md.
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
+#include "agents/diffusion_field.hpp"
 #include "agents/targets.hpp"
 #include "net/vec2.hpp"
 
@@ -18,6 +20,14 @@ struct GaussianBump {
   double amplitude = 1.0;
 };
 
+/// A moving pollution source of strength f(t) = A·e^(−b t) (paper §VI-B: A = 20, b = 1).
+struct SourceDef {
+  PathDef path;
+  double amplitude = 20.0;  ///< A, field units per second
+  double decay = 1.0;       ///< b, 1/s
+  double rate(double t_s) const { return amplitude * std::exp(-decay * t_s); }
+};
+
 struct FieldDef {
   FieldKind kind = FieldKind::uniform;
   double uniform_value = 1.0;
@@ -28,6 +38,9 @@ struct FieldDef {
   std::vector<PathDef> targets;
   // gaussian: ρ(s,t) = Σ_b A_b exp(−‖s − c_b(t)‖² / (2σ_b²))
   std::vector<GaussianBump> bumps;
+  // diffusion: the PDE of SPEC §6.2 with moving point sources (advanced by the world)
+  DiffusionParams diffusion;
+  std::vector<SourceDef> sources;
 };
 
 /// Analytic fields. `value` is called for many sensors at one time, so target positions are

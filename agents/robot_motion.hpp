@@ -15,6 +15,8 @@ struct MotionParams {
   double k_v = 1.0;            ///< viscous friction, 1/s
   double max_speed = 0.0;      ///< world units / s; 0 = unlimited
   double substep_s = 1e-3;     ///< RK4 step used only when max_speed > 0
+  /// Discrete Lloyd iterations: the robot is placed on each new target at once (no dynamics).
+  bool jump_to_target = false;
 };
 
 struct MotionState {

@@ -70,10 +70,12 @@ class World::RobotAgent final : public protocols::RobotHost {
   void cancel_timer(protocols::TimerHandle timer) override { world_.simulator_.cancel(timer); }
   void set_target(const Vec2& target) override {
     // A new centroid starts a new closed-form segment from the current state.
-    const MotionState now_state = state();
+    const MotionState now_state =
+        world_.def_.motion.jump_to_target ? MotionState{target, Vec2{0, 0}} : state();
     segment_ = MotionSegment(world_.def_.motion, sim::to_seconds(now()), now_state, target);
     cache_valid_ = false;
     world_.radio_.raise_speed_bound(segment_.speed_bound());
+    if (world_.def_.motion.jump_to_target) world_.radio_.mobile_node_jumped();
   }
   void update_finished(const protocols::UpdateRecord& record) override {
     world_.simulator_.fingerprint().mix(sim::bits_of(record.centroid.x()));
@@ -153,6 +155,9 @@ World::World(sim::Simulator& simulator, const WorldDef& def)
   sensor_grid_.build(positions, ids);
   sensor_states_.assign(def_.sensors.size(), protocols::SensorState{});
   sensor_read_counts_.assign(def_.sensors.size(), 0);
+  if (def_.field.kind == FieldKind::diffusion) diffusion_ = std::make_unique<DiffusionField>(def_.field.diffusion);
+  spray_rate_.assign(robots_.size(), 0.0);
+  neutraliser_used_.assign(robots_.size(), 0.0);
 }
 
 World::~World() = default;
@@ -162,6 +167,8 @@ void World::start() {
     RobotAgent* agent = robot.get();
     simulator_.after(sim::Duration{0}, [agent] { agent->protocol().start(); });
   }
+  if (diffusion_)  // the PDE is the one thing that advances on a fixed step (STYLE habit 6)
+    simulator_.after(sim::seconds(def_.field.diffusion.dt_s), [this] { pde_step(); });
   const BeaconDef& b = def_.beacons;
   if (b.senders == BeaconSenders::none) return;
   auto schedule = [&](NodeId node, std::uint64_t key) {
@@ -190,12 +197,76 @@ std::vector<Vec2> World::source_positions() const {
 }
 
 double World::true_density(std::size_t sensor) {
+  if (diffusion_) return diffusion_->value_at(def_.sensors[sensor].position);
   return field_.peek(def_.sensors[sensor].position, sim::to_seconds(simulator_.now()));
+}
+
+double World::field_value(const Vec2& s) {
+  return diffusion_ ? diffusion_->value_at(s) : field_.value(s, sim::to_seconds(simulator_.now()));
+}
+
+double World::pollution_total() const {
+  double total = 0.0;
+  if (diffusion_)
+    for (const SensorDef& s : def_.sensors) total += diffusion_->value_at(s.position);
+  return total;
+}
+
+void World::pde_step() {
+  // This event at t1 advances the field over [t1 − dt, t1]; readings between steps see the
+  // last completed step.
+  const double dt = def_.field.diffusion.dt_s;
+  const double t0 = sim::to_seconds(simulator_.now()) - dt;
+  const bool spraying = def_.dispenser.enabled;
+  if (spraying)
+    for (std::size_t i = 0; i < robots_.size(); ++i) spray_rate_[i] = spray_rate(i);
+  const InjectionFn injections = [this, spraying](double t, std::vector<PointInjection>& out) {
+    for (const SourceDef& source : def_.field.sources) out.push_back({position_on(source.path, t), source.rate(t)});
+    if (spraying)
+      for (std::size_t i = 0; i < robots_.size(); ++i)
+        out.push_back({robots_[i]->segment().state_at(t).position, spray_rate_[i]});
+  };
+  const StepReport report = diffusion_->step(t0, injections);
+  if (spraying)
+    for (std::size_t i = 0; i < robots_.size(); ++i)
+      neutraliser_used_[i] -= report.injections[def_.field.sources.size() + i].applied;
+  simulator_.fingerprint().mix(sim::bits_of(diffusion_->mass()));
+  simulator_.after(sim::seconds(dt), [this] { pde_step(); });
+}
+
+double World::spray_rate(std::size_t robot) const {
+  const DispenserDef& d = def_.dispenser;
+  if (d.payload > 0 && neutraliser_used_[robot] >= d.payload) return 0.0;  // tank empty
+  const Vec2 p = robots_[robot]->state().position;
+  const protocols::VoronoiProtocol& protocol = robots_[robot]->protocol();
+  double sum = 0.0;
+  std::size_t count = 0;
+  if (d.readings == SprayReadings::live) {
+    const protocols::ConvexPolygon& cell = protocol.cell();
+    sensor_grid_.for_each_within(p, d.spray_radius, [&](NodeId, const Vec2& s, double) {
+      if (!protocols::contains(cell, s)) return;
+      sum += diffusion_->value_at(s);
+      ++count;
+    });
+  } else {
+    for (const protocols::CellReading& r : protocol.cell_readings())
+      if ((r.position - p).norm() <= d.spray_radius) {
+        sum += r.value;
+        ++count;
+      }
+  }
+  if (count == 0) return 0.0;
+  // Only pollution is neutralised: a non-positive mean asks for no spray (never a source).
+  const double mean = sum / static_cast<double>(count);
+  double magnitude = std::min(d.gain * std::max(mean, 0.0), d.max_rate);
+  if (d.payload > 0)
+    magnitude = std::min(magnitude, (d.payload - neutraliser_used_[robot]) / def_.field.diffusion.dt_s);
+  return -magnitude;
 }
 
 double World::sensor_reading(std::size_t sensor) {
   ++readings_taken_;
-  double value = field_.value(def_.sensors[sensor].position, sim::to_seconds(simulator_.now()));
+  double value = field_value(def_.sensors[sensor].position);
   if (def_.sensor_noise_sigma > 0.0) {
     // Box-Muller from two keyed draws: the n-th reading of a sensor has fixed noise.
     const std::uint64_t n = sensor_read_counts_[sensor]++;

@@ -34,6 +34,21 @@ struct BeaconDef {
   double range = 0.2;  ///< world units
 };
 
+/// The robots' dispensers (paper §VI-B, SPEC §6.2): f_c = −k_s · (mean reading of the sensors in
+/// the robot's cell that lie within spray_radius of it), magnitude capped at max_rate.
+enum class SprayReadings {
+  live,         ///< the current values of those sensors (what Diff-MAS2D did)
+  last_update,  ///< the readings the robot received in its last protocol update
+};
+struct DispenserDef {
+  bool enabled = false;
+  double gain = 10.0;         ///< k_s, 1/s
+  double spray_radius = 0.2;  ///< world units
+  double max_rate = 2.0;      ///< cap on |f_c|, field units per second
+  double payload = 0.0;       ///< neutraliser each robot carries (rate·s); 0 = unlimited
+  SprayReadings readings = SprayReadings::live;
+};
+
 struct WorldDef {
   std::uint64_t seed = 1;
   protocols::ConvexPolygon domain;
@@ -46,6 +61,7 @@ struct WorldDef {
   protocols::ProtocolParams protocol;
   protocols::DensityScaling scaling;
   BeaconDef beacons;
+  DispenserDef dispenser;
 };
 
 /// Hooks for recorders.
@@ -91,6 +107,12 @@ class World final : public net::RadioListener, public net::MobilePositions {
   /// Positions of the field's moving entities now (targets, bump centres).
   std::vector<Vec2> source_positions() const;
   std::uint64_t clamped_readings() const { return field_.clamped_readings(); }
+  /// The pollution field (diffusion runs), or null.
+  const DiffusionField* diffusion() const { return diffusion_.get(); }
+  /// Σ of the sensors' noiseless readings now (the paper's Fig. 6 quantity).
+  double pollution_total() const;
+  /// Neutraliser a robot's dispenser has released so far (rate·s, applied to the field).
+  double neutraliser_used(std::size_t robot) const { return neutraliser_used_[robot]; }
   std::uint64_t sensor_readings() const { return readings_taken_; }
 
   // ---- net::RadioListener, net::MobilePositions --------------------------------------------
@@ -108,6 +130,9 @@ class World final : public net::RadioListener, public net::MobilePositions {
                                 protocols::CentroidAccumulator& accumulator);
   void sensor_timer(std::size_t sensor, std::uint32_t kind);
   void send_beacon(NodeId node);
+  void pde_step();
+  double spray_rate(std::size_t robot) const;
+  double field_value(const Vec2& s);
 
   sim::Simulator& simulator_;
   WorldDef def_;
@@ -119,6 +144,8 @@ class World final : public net::RadioListener, public net::MobilePositions {
   std::vector<protocols::SensorState> sensor_states_;
   std::vector<std::uint32_t> sensor_read_counts_;  // keys the noise draws
   net::SpatialGrid sensor_grid_;
+  std::unique_ptr<DiffusionField> diffusion_;
+  std::vector<double> spray_rate_, neutraliser_used_;  // per robot
   std::uint64_t readings_taken_ = 0;
   WorldObserver* observer_ = nullptr;
 };

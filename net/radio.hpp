@@ -93,6 +93,8 @@ class Radio {
   void raise_speed_bound(double speed) {
     if (speed > margin_speed_) margin_speed_ = speed;
   }
+  /// A mobile node jumped (no speed bound covers it): rebuild the mobile index on next use.
+  void mobile_node_jumped() { mobile_index_valid_ = false; }
 
   /// Broadcasts `payload` with range `range` (world units, capped at max_range). Every
   /// node within range at send time hears it and pays E_rx. Returns false if refused.

@@ -136,9 +136,11 @@ void VoronoiProtocol::decide() {
 void VoronoiProtocol::finish_update(bool truncated) {
   // The Lloyd target: centroid of the readings inside V_i weighted by SK(ρ)·A(s).
   CentroidAccumulator accumulator(context_.scaling);
+  cell_readings_.clear();
   for (const HeardReading& r : readings_)
     if (contains(cell_.polygon, r.position)) {
       accumulator.add(r.position, r.value, host_.sensor_area(r.sensor));
+      cell_readings_.push_back({r.position, r.value});
       ++record_.readings;
     }
   record_.radius = radius_m_;

@@ -48,6 +48,12 @@ struct ProtocolContext {
   double max_range = 1.5;  ///< the radio's cap, world units
 };
 
+/// A reading the robot holds from its last update, inside its cell.
+struct CellReading {
+  Vec2 position;
+  double value;
+};
+
 class VoronoiProtocol {
  public:
   /// Timer kinds.
@@ -64,6 +70,8 @@ class VoronoiProtocol {
 
   double radius() const { return radius_m_; }  ///< R_i
   const ConvexPolygon& cell() const { return last_cell_; }
+  /// The readings of the last finished update that lie inside its cell.
+  const std::vector<CellReading>& cell_readings() const { return cell_readings_; }
   bool busy() const { return phase_ != Phase::idle; }
   std::uint64_t delayed_updates() const { return delayed_updates_; }
 
@@ -116,6 +124,7 @@ class VoronoiProtocol {
   Vec2 last_target_{0, 0};
   bool has_target_ = false;
   ConvexPolygon last_cell_;
+  std::vector<CellReading> cell_readings_;
 
   // State of the update in progress.
   UpdateRecord record_;

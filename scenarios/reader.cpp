@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 namespace masnet::scenarios {
@@ -17,7 +18,12 @@ std::string ScenarioReader::location(const YAML::Node& node, const std::string& 
         path.rfind(override_path + "[", 0) == 0)
       return "--set " + text;
   const YAML::Mark mark = node.Mark();
-  if (mark.is_null()) return file_name_ + ":1:1";
+  if (mark.is_null()) {
+    // A node without a mark was created by an override of a key below it (--set groups.x=1).
+    for (const auto& [override_path, text] : overrides_)
+      if (override_path.rfind(path + ".", 0) == 0) return "--set " + text;
+    return file_name_ + ":1:1";
+  }
   return file_name_ + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
 }
 
@@ -80,7 +86,17 @@ void Section::resolve(std::string_view key, nlohmann::json value) {
 namespace {
 std::string shown(const YAML::Node& node) {
   if (node.IsScalar()) return "'" + node.Scalar() + "'";
-  if (node.IsSequence()) return "a list";
+  if (node.IsSequence()) {
+    // A short list of scalars is shown as written ("[1, 2, 3]"): "got a list" would puzzle
+    // someone who was asked for a point, which is a list too.
+    std::string items;
+    for (const auto& item : node) {
+      if (!item.IsScalar()) return "a list of " + std::to_string(node.size()) + " items";
+      items += (items.empty() ? "" : ", ") + item.Scalar();
+    }
+    if (items.size() <= 40) return "[" + items + "]";
+    return "a list of " + std::to_string(node.size()) + " items";
+  }
   if (node.IsMap()) return "a mapping";
   return "nothing";
 }
@@ -305,8 +321,20 @@ void Section::reject(std::string_view key, const std::string& why) {
 void Section::finish() {
   if (!node_ || !node_.IsMap()) return;
   std::vector<std::string> known(known_.begin(), known_.end());
+  std::map<std::string, int, std::less<>> first_line;  // 1-based line of each key's first use
   for (auto it = node_.begin(); it != node_.end(); ++it) {
     const std::string key = it->first.IsScalar() ? it->first.Scalar() : std::string("?");
+    // yaml-cpp keeps both copies of a repeated key and the accessors read the first: the
+    // second value would be ignored without a word.
+    if (it->first.IsScalar()) {
+      const auto [first, inserted] = first_line.emplace(key, it->first.Mark().line + 1);
+      if (!inserted) {
+        reader_->error(reader_->location(it->first, child_path(key)),
+                       "duplicate key '" + key + "'" + (path_.empty() ? std::string() : " in '" + path_ + "'") +
+                           " (first given on line " + std::to_string(first->second) + ")");
+        continue;
+      }
+    }
     if (known_.count(key)) continue;
     std::string message = "unknown key '" + key + "'" +
                           (path_.empty() ? std::string() : " in '" + path_ + "'");

@@ -128,9 +128,23 @@ void Recorder::sample() {
       for (std::size_t i = 0; i < n_robots; ++i) group_changes_ += group[i] != last_group_[i] ? 1 : 0;
     last_group_ = group;
   }
+  if (const agents::DiffusionField* field = world_.diffusion()) {
+    row.pollution_total = world_.pollution_total();
+    row.pollution_integral = field->mass();
+    row.pollution_max = field->peak();
+    for (std::size_t i = 0; i < n_robots; ++i) row.neutraliser_used += world_.neutraliser_used(i);
+  }
   row.updates = updates_.size();
   row.cell_correctness = updates_.empty() ? 1.0 : static_cast<double>(correct_updates_) / static_cast<double>(updates_.size());
   samples_.push_back(std::move(row));
+}
+
+void Recorder::attach_baseline(const std::vector<Sample>& baseline) {
+  for (std::size_t k = 0; k < samples_.size() && k < baseline.size(); ++k) {
+    samples_[k].pollution_total_baseline = baseline[k].pollution_total;
+    samples_[k].pollution_integral_baseline = baseline[k].pollution_integral;
+  }
+  has_baseline_ = true;
 }
 
 void Recorder::sample_trajectories() {
@@ -169,7 +183,15 @@ void Recorder::snapshot() {
     sources.push_back({{"position", point(agents::position_on(p, t))}, {"heading", point(agents::heading_on(p, t))}});
   for (const agents::GaussianBump& b : world_.def().field.bumps)
     sources.push_back({{"position", point(agents::position_on(b.path, t))}, {"heading", point(agents::heading_on(b.path, t))}});
+  for (const agents::SourceDef& src : world_.def().field.sources)
+    sources.push_back({{"position", point(agents::position_on(src.path, t))}, {"heading", point(agents::heading_on(src.path, t))}});
   snap["sources"] = sources;
+  if (const agents::DiffusionField* field = world_.diffusion()) {
+    const auto& p = field->params();
+    const auto values = field->values();
+    snap["field"] = {{"nx", field->nx()}, {"ny", field->ny()}, {"x0", p.x0}, {"y0", p.y0}, {"x1", p.x1}, {"y1", p.y1},
+                     {"values", std::vector<double>(values.begin(), values.end())}};
+  }
   snapshots_.push_back(std::move(snap));
 }
 
@@ -194,12 +216,17 @@ void Recorder::write_timeseries(const std::string& path) const {
             "updates,cell_correctness");
   if (targets) out.print(",tracking_error_mean,tracking_error_max");
   for (std::size_t k = 0; k < targets; ++k) out.print(",robots_target_{}", k);
+  const bool pollution = world_.diffusion() != nullptr;
+  if (pollution) out.print(",pollution_total,pollution_integral,pollution_max,neutraliser_used");
+  if (pollution && has_baseline_) out.print(",pollution_total_baseline,pollution_integral_baseline");
   out.print("\n");
   for (const Sample& s : samples_) {
     out.print("{},{},{},{},{},{},{},{},{},{}", s.t_s, s.coverage_cost, s.mean_dist_to_centroid,
               s.max_dist_to_centroid, s.mean_radius, s.messages, s.bytes, s.energy_j, s.updates, s.cell_correctness);
     if (targets) out.print(",{},{}", s.tracking_mean, s.tracking_max);
     for (std::size_t k = 0; k < targets; ++k) out.print(",{}", k < s.robots_per_target.size() ? s.robots_per_target[k] : 0);
+    if (pollution) out.print(",{},{},{},{}", s.pollution_total, s.pollution_integral, s.pollution_max, s.neutraliser_used);
+    if (pollution && has_baseline_) out.print(",{},{}", s.pollution_total_baseline, s.pollution_integral_baseline);
     out.print("\n");
   }
 }
@@ -265,6 +292,57 @@ void Recorder::write_nodes(const std::string& path) const {
 void Recorder::write_snapshots(const std::string& path) const {
   std::ofstream out(path);
   out << snapshots_.dump() << "\n";
+}
+
+namespace {
+
+// Peak, final, final/peak, whether the curve never rises after its peak, and the first time it
+// falls below `threshold` after the peak (null if never).
+nlohmann::json curve_summary(const std::vector<Sample>& samples, double Sample::*value, double threshold_or_zero) {
+  std::size_t peak_at = 0;
+  for (std::size_t k = 0; k < samples.size(); ++k)
+    if (samples[k].*value > samples[peak_at].*value) peak_at = k;
+  const double peak = samples[peak_at].*value, final = samples.back().*value;
+  bool monotonic = true;
+  for (std::size_t k = peak_at + 1; k < samples.size(); ++k)
+    if (samples[k].*value > samples[k - 1].*value) monotonic = false;
+  const double threshold = threshold_or_zero > 0 ? threshold_or_zero : 0.05 * peak;
+  nlohmann::json clean = nullptr;
+  for (std::size_t k = peak_at; k < samples.size(); ++k)
+    if (samples[k].*value < threshold) {
+      clean = samples[k].t_s;
+      break;
+    }
+  return {{"peak", peak},
+          {"peak_time_s", samples[peak_at].t_s},
+          {"final", final},
+          {"final_over_peak", peak > 0 ? final / peak : 0.0},
+          {"monotonic_after_peak", monotonic},
+          {"clean_threshold", threshold},
+          {"time_to_clean_s", clean}};
+}
+
+}  // namespace
+
+nlohmann::json Recorder::pollution_summary() const {
+  nlohmann::json p = curve_summary(samples_, &Sample::pollution_total, def_.clean_threshold);
+  const auto& d = def_.world.field.diffusion;
+  p["mode"] = d.mode == agents::DiffusionMode::fidelity ? "fidelity" : "physical";
+  p["boundary"] = d.boundary == agents::Boundary::dirichlet ? "dirichlet" : "no_flux";
+  p["control"] = def_.world.dispenser.enabled;
+  p["integral_final"] = samples_.back().pollution_integral;
+  p["neutraliser_used"] = samples_.back().neutraliser_used;
+  std::vector<double> per_robot;
+  for (std::size_t i = 0; i < world_.robot_count(); ++i) per_robot.push_back(world_.neutraliser_used(i));
+  p["neutraliser_per_robot"] = per_robot;
+  if (has_baseline_) {
+    nlohmann::json b = curve_summary(samples_, &Sample::pollution_total_baseline, def_.clean_threshold);
+    b["integral_final"] = samples_.back().pollution_integral_baseline;
+    p["baseline"] = b;
+    const double base_final = samples_.back().pollution_total_baseline;
+    p["final_over_baseline_final"] = base_final != 0 ? samples_.back().pollution_total / base_final : 0.0;
+  }
+  return p;
 }
 
 nlohmann::json Recorder::summary_metrics() const {
@@ -351,6 +429,7 @@ nlohmann::json Recorder::summary_metrics() const {
   p["bytes_per_update"] = update_bytes / div;
   j["protocol"] = p;
 
+  if (world_.diffusion() && !samples_.empty()) j["pollution"] = pollution_summary();
   if (!samples_.empty()) {
     const Sample& last = samples_.back();
     j["coverage"] = {{"final_cost", last.coverage_cost},

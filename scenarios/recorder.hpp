@@ -27,6 +27,12 @@ struct Sample {
   std::vector<std::uint32_t> robots_per_target;
   double cell_correctness = 1.0;    ///< share of updates so far with the oracle's neighbour set
   std::uint64_t updates = 0;
+  // Diffusion runs (paper §VI-B).
+  double pollution_total = 0;       ///< Σ of the sensors' readings (paper Fig. 6)
+  double pollution_integral = 0;    ///< ∫u dA by the solver's quadrature
+  double pollution_max = 0;         ///< max u over the PDE grid
+  double neutraliser_used = 0;      ///< released by all dispensers so far
+  double pollution_total_baseline = 0, pollution_integral_baseline = 0;  ///< same run, no control
 };
 
 class Recorder final : public agents::WorldObserver {
@@ -48,8 +54,12 @@ class Recorder final : public agents::WorldObserver {
   void write_snapshots(const std::string& path) const;
   /// The metric sections of summary.json (messages, energy, protocol, coverage, tracking).
   nlohmann::json summary_metrics() const;
+  /// The `pollution` section of summary.json (diffusion runs).
+  nlohmann::json pollution_summary() const;
 
   const std::vector<Sample>& samples() const { return samples_; }
+  /// Takes the pollution curves of the uncontrolled twin run (same sample times).
+  void attach_baseline(const std::vector<Sample>& baseline);
 
  private:
   struct UpdateRow {
@@ -76,6 +86,7 @@ class Recorder final : public agents::WorldObserver {
   std::vector<int> last_group_;  // nearest target of each robot at the last sample
   std::uint64_t group_changes_ = 0;
   std::vector<std::pair<sim::NodeId, double>> deaths_;
+  bool has_baseline_ = false;
 };
 
 }  // namespace masnet::scenarios

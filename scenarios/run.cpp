@@ -60,6 +60,18 @@ void Run::execute(const ProgressFn& progress) {
   }
   // The final state is always sampled, whatever the period.
   if (recorder_->samples().empty() || recorder_->samples().back().t_s != def_.duration_s) recorder_->sample();
+  if (def_.baseline && def_.world.dispenser.enabled) {
+    // The uncontrolled twin: same scenario and seed, dispensers off, so that with/without
+    // control always sit side by side (SPEC §6.2).
+    ScenarioDef twin = def_;
+    twin.world.dispenser.enabled = false;
+    twin.baseline = false;
+    twin.output.snapshots.clear();
+    Run baseline(twin);
+    baseline.execute();
+    recorder_->attach_baseline(baseline.recorder().samples());
+    baseline_fingerprint_ = baseline.fingerprint();
+  }
   wall_time_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 }
 
@@ -72,6 +84,7 @@ nlohmann::json Run::summary() const {
   j["events"] = simulator_->events_run();
   j["fingerprint"] = simulator_->fingerprint().hex();
   j["run_key"] = run_key(def_);
+  if (!baseline_fingerprint_.empty()) j["baseline_fingerprint"] = baseline_fingerprint_;
   j["scenario"] = {{"name", def_.name},
                    {"source", def_.source_path},
                    {"sensors", world_->sensor_count()},

@@ -41,6 +41,7 @@ class Run {
   std::unique_ptr<agents::World> world_;
   std::unique_ptr<Recorder> recorder_;
   double wall_time_s_ = 0.0;
+  std::string baseline_fingerprint_;
 };
 
 /// A key that names the run: the same resolved scenario (seed included) and version give

@@ -1,8 +1,11 @@
 #include "scenarios/scenario.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "sim/random.hpp"
@@ -53,19 +56,23 @@ bool apply_override(YAML::Node& root, const std::string& text, std::vector<Overr
     return false;
   }
   if (!root.IsMap()) root = YAML::Node(YAML::NodeType::Map);
-  YAML::Node node = root;
+  // Walk with reset(), never operator=: on a yaml-cpp Node, `a = b` rebinds the data that `a`
+  // refers to, so `node = next` would overwrite the root with the subsection.
+  YAML::Node node;
+  node.reset(root);
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
-    YAML::Node next = node[parts[i]];
+    YAML::Node next;
+    next.reset(node[parts[i]]);
     if (!next.IsDefined() || next.IsNull()) {
       node[parts[i]] = YAML::Node(YAML::NodeType::Map);
-      next = node[parts[i]];
+      next.reset(node[parts[i]]);
     } else if (!next.IsMap()) {
       std::string prefix;
       for (std::size_t k = 0; k <= i; ++k) prefix += (k ? "." : "") + parts[k];
       diagnostics.push_back({where, "'" + prefix + "' is not a section, cannot set '" + path + "'"});
       return false;
     }
-    node = next;
+    node.reset(next);
   }
   node[parts.back()] = value;
   applied.push_back({path, text, value});
@@ -73,6 +80,13 @@ bool apply_override(YAML::Node& root, const std::string& text, std::vector<Overr
 }
 
 // ---- Sections --------------------------------------------------------------------------------
+
+// "(1.5, 0.5)": a point as the user would have written it, for messages.
+std::string shown_point(const Vec2& p) {
+  std::ostringstream out;
+  out << "(" << p.x() << ", " << p.y() << ")";
+  return out.str();
+}
 
 ConvexPolygon read_domain(Section s) {
   ConvexPolygon domain = protocols::rectangle(0, 0, 1, 1);
@@ -92,9 +106,9 @@ ConvexPolygon read_domain(Section s) {
     if (points.size() >= 3) {
       if (!protocols::is_simple(points))
         s.error_at("polygon", "the polygon intersects itself");
-      else if (auto canonical = protocols::normalize_convex_polygon(points))
-        domain = *canonical;
-      else
+      else if (auto canonical = protocols::normalize_convex_polygon(points)) {
+        if (!has_rect) domain = *canonical;  // both given: reported above, keep the default
+      } else
         s.error_at("polygon", "the polygon is not convex (the domain must be a convex polygon)");
     }
   } else {
@@ -114,6 +128,7 @@ agents::PathDef read_path(Section& s) {
     s.reject("velocity", "'velocity' goes with 'start'; waypoints move at 'speed'");
   } else {
     if (!s.has("start") && !s.has("center")) s.error_at("start", "missing 'start: [x, y]' (or 'waypoints')");
+    if (s.has("center")) s.reject("start", "give either 'start' or 'center' (the same thing), not both");
     path.start = s.has("center") ? s.point("center", Vec2{0.5, 0.5}) : s.point("start", Vec2{0.5, 0.5});
     path.velocity = s.point("velocity", Vec2{0, 0});
     s.reject("speed", "'speed' goes with 'waypoints'");
@@ -194,8 +209,9 @@ struct SensorLayout {
   double spacing = 0.0;  // h: grid spacing or sqrt(area / n)
 };
 
+// `lines` receives the line number of each sensor, to locate later checks in the CSV file.
 std::vector<agents::SensorDef> read_sensor_file(const std::string& path, Section& s,
-                                                ScenarioReader& reader) {
+                                                ScenarioReader& reader, std::vector<int>& lines) {
   std::vector<agents::SensorDef> sensors;
   std::ifstream in(path);
   if (!in) {
@@ -210,17 +226,26 @@ std::vector<agents::SensorDef> read_sensor_file(const std::string& path, Section
     std::vector<double> cols;
     std::stringstream fields(line);
     std::string field;
+    std::size_t column = 0, bad_column = 0;  // 0-based offset of the first non-number
+    std::string bad_field;
     bool numeric = true;
     while (std::getline(fields, field, ',')) {
       char* end = nullptr;
       const double v = std::strtod(field.c_str(), &end);
       while (end && *end == ' ') ++end;
-      if (end == field.c_str() || (end && *end != '\0' && *end != '\r')) numeric = false;
+      if (numeric && (end == field.c_str() || (end && *end != '\0' && *end != '\r'))) {
+        numeric = false;
+        bad_column = column;
+        bad_field = field;
+        if (!bad_field.empty() && bad_field.back() == '\r') bad_field.pop_back();
+      }
       cols.push_back(v);
+      column += field.size() + 1;
     }
     if (!numeric) {
       if (number == 1) continue;  // a header line
-      reader.error(path + ":" + std::to_string(number) + ":1", "expected numbers 'x,y' or 'x,y,area'");
+      reader.error(path + ":" + std::to_string(number) + ":" + std::to_string(bad_column + 1),
+                   "expected a number, got '" + bad_field + "' (lines are 'x,y' or 'x,y,area')");
       continue;
     }
     if (cols.size() != 2 && cols.size() != 3) {
@@ -228,10 +253,15 @@ std::vector<agents::SensorDef> read_sensor_file(const std::string& path, Section
                    "expected 2 or 3 columns (x,y[,area]), got " + std::to_string(cols.size()));
       continue;
     }
+    if (cols.size() == 3 && !(cols[2] > 0.0 && std::isfinite(cols[2]))) {
+      reader.error(path + ":" + std::to_string(number) + ":1", "the area (third column) must be > 0");
+      continue;
+    }
     agents::SensorDef d;
     d.position = Vec2{cols[0], cols[1]};
     d.area = cols.size() == 3 ? cols[2] : 0.0;
     sensors.push_back(d);
+    lines.push_back(number);
   }
   return sensors;
 }
@@ -249,7 +279,12 @@ std::vector<agents::SensorDef> read_sensors(Section s, const ConvexPolygon& doma
   }
   const double domain_area = protocols::area(domain);
   if (layout.kind == "grid") {
-    const auto nx = s.integer("nx", 10, 1, 100000), ny = s.integer("ny", 10, 1, 100000);
+    auto nx = s.integer("nx", 10, 1, 100000), ny = s.integer("ny", 10, 1, 100000);
+    // The same cap as a random layout's count: a typo must not exhaust memory while validating.
+    if (nx * ny > 100000000) {
+      s.error_at("ny", "a " + std::to_string(nx) + " x " + std::to_string(ny) + " grid has more than 100000000 sensors");
+      nx = ny = 1;
+    }
     const std::string alignment = s.choice<std::string>(
         "alignment", "cell_centred", {{"cell_centred", "cell_centred"}, {"node_aligned", "node_aligned"}});
     const double w = hi.x() - lo.x(), h = hi.y() - lo.y();
@@ -292,10 +327,13 @@ std::vector<agents::SensorDef> read_sensors(Section s, const ConvexPolygon& doma
       s.error_at("file", "layout file needs 'file: path/to/sensors.csv'");
     } else {
       if (std::filesystem::path(file).is_relative()) file = (std::filesystem::path(base_dir) / file).string();
-      sensors = read_sensor_file(file, s, reader);
+      std::vector<int> lines;
+      sensors = read_sensor_file(file, s, reader, lines);
       for (std::size_t k = 0; k < sensors.size(); ++k)
         if (!protocols::contains(domain, sensors[k].position)) {
-          s.error_at("file", "sensor " + std::to_string(k) + " of '" + file + "' lies outside the domain");
+          reader.error(file + ":" + std::to_string(lines[k]) + ":1",
+                       "sensor " + std::to_string(k) + " at " + shown_point(sensors[k].position) +
+                           " lies outside the domain");
           break;
         }
     }
@@ -328,16 +366,24 @@ std::vector<Vec2> read_robots(Section s, const ConvexPolygon& domain, std::uint6
       for (std::int64_t i = 0; i < nx; ++i)
         robots.push_back(Vec2{lo.x() + (static_cast<double>(i) + 0.5) * (hi.x() - lo.x()) / static_cast<double>(nx),
                               lo.y() + (static_cast<double>(j) + 0.5) * (hi.y() - lo.y()) / static_cast<double>(ny)});
+    // The grid spans Ω's bounding box; in a non-rectangular Ω some of it may fall outside.
+    for (std::size_t i = 0; i < robots.size(); ++i)
+      if (!protocols::contains(domain, robots[i])) {
+        s.error_at("layout", "robot " + std::to_string(i) + " of the " + std::to_string(nx) + " x " +
+                                 std::to_string(ny) + " grid, at " + shown_point(robots[i]) +
+                                 ", lies outside the domain (use layout positions or random)");
+        break;
+      }
   } else {
     s.reject("nx", "'nx' applies to layout grid");
     s.reject("ny", "'ny' applies to layout grid");
   }
   if (layout == "positions") {
+    if (!s.has("positions")) s.error_at("positions", "layout positions needs 'positions: [[x, y], ...]'");
     robots = s.points("positions", 1);
     for (std::size_t i = 0; i < robots.size(); ++i)
       if (!protocols::contains(domain, robots[i])) {
-        s.error_at("positions", "robot " + std::to_string(i) + " at (" + std::to_string(robots[i].x()) + ", " +
-                                    std::to_string(robots[i].y()) + ") lies outside the domain");
+        s.error_at("positions", "robot " + std::to_string(i) + " at " + shown_point(robots[i]) + " lies outside the domain");
         break;
       }
   } else {
@@ -488,8 +534,11 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
     def.seed = *seed;
     top.resolve("seed", static_cast<std::int64_t>(*seed));
   }
+  const std::size_t errors_before_duration = reader.diagnostics().size();
   if (!top.has("duration")) top.error_at("duration", "missing required key 'duration' (seconds of simulated time)");
   def.duration_s = top.number("duration", 1.0, Range::positive());
+  // Without a valid duration, snapshot times are not checked against the 1 s fallback.
+  const bool duration_ok = reader.diagnostics().size() == errors_before_duration;
   def.world.seed = def.seed;
   def.world.domain = read_domain(top.section("domain"));
   const std::string base_dir = std::filesystem::path(file_name).parent_path().string();
@@ -508,12 +557,24 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
   def.world.radio = read_radio(top.section("radio"));
   def.world.protocol = read_protocol(top.section("protocol"));
   def.world.beacons = read_beacons(top.section("beacons"));
-  def.output = read_output(top.section("output"), def.duration_s);
+  def.output = read_output(top.section("output"), duration_ok ? def.duration_s : 0.0);
   for (const char* later : {"control", "groups", "faults"})
     top.reject(later, std::string("section '") + later + "' is not supported by this version of masnet");
   top.finish();
   if (!reader.ok()) {
     result.diagnostics = reader.diagnostics();
+    // Sections are read in dependency order (domain before sensors and robots); report in the
+    // order of the file, then --set and sensor-file problems in the order they were found.
+    auto position = [&](const Diagnostic& d) {
+      int line = 0, column = 0;
+      const std::string prefix = file_name + ":";
+      if (d.location.rfind(prefix, 0) == 0 &&
+          std::sscanf(d.location.c_str() + prefix.size(), "%d:%d", &line, &column) == 2)
+        return std::pair{line, column};
+      return std::pair{std::numeric_limits<int>::max(), 0};
+    };
+    std::stable_sort(result.diagnostics.begin(), result.diagnostics.end(),
+                     [&](const Diagnostic& a, const Diagnostic& b) { return position(a) < position(b); });
     return result;
   }
   def.resolved = reader.resolved();

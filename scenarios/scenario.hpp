@@ -32,6 +32,10 @@ struct ScenarioDef {
   agents::WorldDef world;
   OutputDef output;
   std::string sensor_layout;  ///< "grid", "random" or "file": said in the report
+  /// Diffusion runs: also run the same scenario and seed with the dispensers off and report both.
+  bool baseline = false;
+  /// Pollution counts as cleaned when Σ readings falls below this; 0 = 5 % of the peak.
+  double clean_threshold = 0.0;
   nlohmann::json resolved;    ///< every key with its value, defaults included
 };
 
