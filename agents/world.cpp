@@ -293,10 +293,12 @@ protocols::RobotCell World::oracle_cell(std::size_t robot) {
     sites.assign(1, p);
     site_nodes.assign(1, robot_node(robot));
     radio_.for_each_mobile_within(p, r, [&](NodeId id) {
-      if (id == robot_node(robot)) return;
-      sites.push_back(robots_[sim::index(id)]->state().position);
-      site_nodes.push_back(id);
+      if (id != robot_node(robot)) site_nodes.push_back(id);
     });
+    // In id order: the clipping order (and so the last bits of the cell) must not depend on
+    // when the radio last rebuilt its mobile index.
+    std::sort(site_nodes.begin() + 1, site_nodes.end());
+    for (std::size_t k = 1; k < site_nodes.size(); ++k) sites.push_back(robots_[sim::index(site_nodes[k])]->state().position);
     candidates.clear();
     for (std::uint32_t i = 1; i < sites.size(); ++i) candidates.push_back(i);
     cell = protocols::voronoi_cell(0, sites, candidates, def_.domain);

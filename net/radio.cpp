@@ -25,7 +25,7 @@ void Radio::add_static_node(NodeId id, const Vec2& position, std::uint64_t rando
   node.position = position;
   node.random_key = random_key;
   node.hot = kNoHotIndex;
-  node.idle_accounted_to = simulator_.now();
+  node.added_at = simulator_.now();
   nodes_.push_back(node);
   tx_counters_.resize(nodes_.size() * kMessageTypeCount);
   static_ids_.push_back(id);
@@ -40,7 +40,7 @@ void Radio::add_mobile_node(NodeId id, std::uint64_t random_key) {
   node.mobile = true;
   node.random_key = random_key;
   node.hot = kNoHotIndex;
-  node.idle_accounted_to = simulator_.now();
+  node.added_at = simulator_.now();
   nodes_.push_back(node);
   tx_counters_.resize(nodes_.size() * kMessageTypeCount);
   mobile_ids_.push_back(id);
@@ -133,17 +133,15 @@ void Radio::prepare_mobile_index() {
   mobile_index_valid_ = true;
 }
 
-void Radio::accrue_idle(Node& node) {
-  if (params_.energy.idle_power_w <= 0 || !node.alive) return;
-  const sim::Time now = simulator_.now();
-  node.energy_idle_j += params_.energy.idle_power_w * sim::to_seconds(now - node.idle_accounted_to);
-  node.idle_accounted_to = now;
+double Radio::idle_j(const Node& node) const {
+  if (params_.energy.idle_power_w <= 0) return 0.0;
+  const sim::Time until = std::min(simulator_.now(), node.died_at);
+  return params_.energy.idle_power_w * sim::to_seconds(until - node.added_at);
 }
 
 NodeRadioStats Radio::stats(NodeId node) {
   if (index_dirty_) prepare_index();
-  Node& n = nodes_[sim::index(node)];
-  accrue_idle(n);
+  const Node& n = nodes_[sim::index(node)];
   NodeRadioStats s;
   s.heard_bytes = heard_bytes_[n.hot];
   s.overheard_count = overheard_count_[n.hot];
@@ -152,14 +150,14 @@ NodeRadioStats Radio::stats(NodeId node) {
   s.refused_count = n.refused_count;
   s.energy_tx_j = n.energy_tx_j;
   s.energy_rx_j = rx_energy_j(params_.energy, 8.0 * static_cast<double>(s.heard_bytes));
-  s.energy_idle_j = n.energy_idle_j;
+  s.energy_idle_j = idle_j(n);
   s.alive = n.alive;
   s.died_at = n.died_at;
   return s;
 }
 
 double Radio::consumed_j(const Node& node) const {
-  return node.energy_tx_j + node.energy_idle_j +
+  return node.energy_tx_j + idle_j(node) +
          rx_energy_j(params_.energy, 8.0 * static_cast<double>(heard_bytes_[node.hot]));
 }
 
@@ -167,7 +165,6 @@ bool Radio::afford(NodeId id, double energy_j) {
   // Only with a battery: a node that cannot pay for a frame is empty and stops.
   Node& node = nodes_[sim::index(id)];
   if (!node.alive) return false;
-  accrue_idle(node);
   if (params_.energy.battery_j - consumed_j(node) < energy_j) {
     kill(id);
     return false;
@@ -178,15 +175,12 @@ bool Radio::afford(NodeId id, double energy_j) {
 void Radio::schedule_depletion(NodeId id) {
   Node& node = nodes_[sim::index(id)];
   const double remaining =
-      params_.energy.battery_j - node.energy_tx_j - node.energy_idle_j -
+      params_.energy.battery_j - node.energy_tx_j - idle_j(node) -
       (node.hot == kNoHotIndex ? 0.0 : rx_energy_j(params_.energy, 8.0 * static_cast<double>(heard_bytes_[node.hot])));
   simulator_.cancel(node.depletion_event);
   // The idle drain empties the battery at a known time: a scheduled event, not a poll.
   const sim::Duration left = sim::seconds(std::max(remaining, 0.0) / params_.energy.idle_power_w);
-  node.depletion_event = simulator_.after(left, [this, id] {
-    accrue_idle(nodes_[sim::index(id)]);
-    kill(id);
-  });
+  node.depletion_event = simulator_.after(left, [this, id] { kill(id); });
 }
 
 void Radio::kill(NodeId id) {  // the battery is empty
@@ -258,10 +252,12 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   std::uint64_t* const rx_count = rx_count_.data() + type_index * heard_bytes_.size();
   std::uint64_t* const rx_bytes = rx_bytes_.data() + type_index * heard_bytes_.size();
   std::uint64_t received = 0;
+  const bool drains = battery && params_.energy.idle_power_w > 0;
   auto receive = [&](NodeId id, std::uint32_t hot) {
     if (battery && !afford(id, rx_j)) return;
     heard[hot] += bytes;
     ++hearers;
+    if (drains) schedule_depletion(id);  // the idle drain now ends sooner
     Node& node = nodes_[sim::index(id)];
     if (params_.loss > 0 &&
         sim::keyed_uniform01(seed_, kLossPurpose, src.random_key, node.random_key, frame_number) < params_.loss) {
@@ -278,6 +274,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     heard[hot] += bytes;
     ++overheard[hot];
     ++hearers;
+    if (drains) schedule_depletion(id);
   };
 
   const Vec2 center = position(source);

@@ -144,9 +144,9 @@ class Radio {
     std::uint64_t random_key = 0;
     std::uint64_t frames_sent = 0;
     std::uint64_t lost_count = 0, unreachable_count = 0, refused_count = 0;
-    double energy_tx_j = 0.0, energy_idle_j = 0.0;
+    double energy_tx_j = 0.0;
     sim::Time busy_until{};
-    sim::Time idle_accounted_to{};
+    sim::Time added_at{};  // idle drain runs from here to min(now, died_at)
     sim::Time died_at = sim::kTimeMax;
     sim::EventId depletion_event;
   };
@@ -162,7 +162,9 @@ class Radio {
   bool battery_limited() const { return params_.energy.battery_j > 0; }
   double consumed_j(const Node& node) const;
   bool afford(NodeId node, double energy_j);
-  void accrue_idle(Node& node);
+  /// Idle energy as a function of time, not an accumulator: the value never depends on how
+  /// often someone looked at it (recorders must not change the model's numbers).
+  double idle_j(const Node& node) const;
   void schedule_depletion(NodeId id);
   void kill(NodeId id);
   void hand_over(const Frame& frame, NodeId receiver);

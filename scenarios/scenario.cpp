@@ -137,7 +137,7 @@ agents::PathDef read_path(Section& s) {
   return path;
 }
 
-agents::FieldDef read_field(Section s) {
+agents::FieldDef read_field(Section s, const ConvexPolygon& domain) {
   agents::FieldDef f;
   f.kind = s.choice<FieldKind>("kind", FieldKind::uniform,
                                {{"uniform", FieldKind::uniform},
@@ -179,9 +179,71 @@ agents::FieldDef read_field(Section s) {
   } else {
     s.reject("bumps", "'bumps" + only + "gaussian");
   }
-  if (f.kind == FieldKind::diffusion) s.error_at("kind", "the diffusion field is not available yet");
+  if (f.kind == FieldKind::diffusion) {
+    Section d = s.section("diffusion");
+    agents::DiffusionParams& p = f.diffusion;
+    p.mode = d.choice<agents::DiffusionMode>(
+        "mode", agents::DiffusionMode::fidelity,
+        {{"fidelity", agents::DiffusionMode::fidelity}, {"physical", agents::DiffusionMode::physical}});
+    p.boundary = d.choice<agents::Boundary>(
+        "boundary", agents::Boundary::dirichlet,
+        {{"dirichlet", agents::Boundary::dirichlet}, {"no_flux", agents::Boundary::no_flux}});
+    p.kappa = d.number("kappa", p.kappa, Range::positive());
+    p.cells = static_cast<int>(d.integer("cells", p.cells, 2, 4096));
+    p.cells_y = static_cast<int>(d.integer("cells_y", 0, 0, 4096));
+    p.dt_s = d.number("dt", p.dt_s, Range::positive());
+    if (d.has("clip")) p.clip_sprays_at_zero = d.boolean("clip", false);
+    // The PDE lives on a rectangle: Ω must be one, and gives the grid its extent.
+    Vec2 lo = domain.vertices[0], hi = domain.vertices[0];
+    for (const Vec2& v : domain.vertices) {
+      lo = lo.cwiseMin(v);
+      hi = hi.cwiseMax(v);
+    }
+    const double box = (hi.x() - lo.x()) * (hi.y() - lo.y());
+    if (domain.vertices.size() != 4 || std::fabs(protocols::area(domain) - box) > 1e-12 * box)
+      s.error_at("kind", "a diffusion field needs a rectangular domain");
+    p.x0 = lo.x();
+    p.y0 = lo.y();
+    p.x1 = hi.x();
+    p.y1 = hi.y();
+    if (std::string problem = agents::diffusion_params_error(p); !problem.empty() && d.has("dt"))
+      d.error_at("dt", problem);
+    else if (!problem.empty())
+      d.error_at("cells", problem);
+    d.finish();
+    for (Section src : s.sections("sources")) {
+      agents::SourceDef source;
+      source.path = read_path(src);
+      source.amplitude = src.number("amplitude", 20.0, Range::non_negative());
+      source.decay = src.number("decay", 1.0, Range::non_negative());
+      src.finish();
+      f.sources.push_back(source);
+    }
+  } else {
+    s.reject("diffusion", "'diffusion" + only + "diffusion");
+    s.reject("sources", "'sources" + only + "diffusion");
+  }
   s.finish();
   return f;
+}
+
+// The robots' dispensers and the uncontrolled twin run (diffusion fields only).
+void read_control(Section s, bool diffusion, agents::DispenserDef& d, ScenarioDef& def) {
+  if (!diffusion) {
+    if (s.has("dispensers") || s.has("baseline") || s.has("gain"))
+      s.error_at("dispensers", "the control section applies to field kind diffusion");
+  }
+  d.enabled = s.boolean("dispensers", false);
+  d.gain = s.number("gain", d.gain, Range::non_negative());
+  d.spray_radius = s.number("spray_radius", d.spray_radius, Range::positive());
+  d.max_rate = s.number("max_rate", d.max_rate, Range::non_negative());
+  d.payload = s.number("payload", d.payload, Range::non_negative());
+  d.readings = s.choice<agents::SprayReadings>(
+      "readings", d.readings,
+      {{"live", agents::SprayReadings::live}, {"last_update", agents::SprayReadings::last_update}});
+  def.baseline = s.boolean("baseline", false);
+  def.clean_threshold = s.number("clean_threshold", 0.0, Range::non_negative());
+  s.finish();
 }
 
 protocols::DensityScaling read_scaling(Section s) {
@@ -286,16 +348,21 @@ std::vector<agents::SensorDef> read_sensors(Section s, const ConvexPolygon& doma
       nx = ny = 1;
     }
     const std::string alignment = s.choice<std::string>(
-        "alignment", "cell_centred", {{"cell_centred", "cell_centred"}, {"node_aligned", "node_aligned"}});
+        "alignment", "cell_centred",
+        {{"cell_centred", "cell_centred"}, {"node_aligned", "node_aligned"}, {"interior", "interior"}});
     const double w = hi.x() - lo.x(), h = hi.y() - lo.y();
     // cell_centred: the centres of an nx × ny grid of cells (the paper's 40 × 40 sensors);
-    // node_aligned: nx × ny nodes from wall to wall.
+    // node_aligned: nx × ny nodes from wall to wall; interior: the inner nodes of an
+    // (nx+1) × (ny+1)-interval grid (the 29 × 29 sensors of Diff-MAS2D's 30 × 30 grid).
     for (std::int64_t j = 0; j < ny; ++j)
       for (std::int64_t i = 0; i < nx; ++i) {
         double x, y;
         if (alignment == "cell_centred") {
           x = lo.x() + (static_cast<double>(i) + 0.5) * w / static_cast<double>(nx);
           y = lo.y() + (static_cast<double>(j) + 0.5) * h / static_cast<double>(ny);
+        } else if (alignment == "interior") {
+          x = lo.x() + static_cast<double>(i + 1) * w / static_cast<double>(nx + 1);
+          y = lo.y() + static_cast<double>(j + 1) * h / static_cast<double>(ny + 1);
         } else {
           x = nx == 1 ? lo.x() + 0.5 * w : lo.x() + static_cast<double>(i) * w / static_cast<double>(nx - 1);
           y = ny == 1 ? lo.y() + 0.5 * h : lo.y() + static_cast<double>(j) * h / static_cast<double>(ny - 1);
@@ -303,8 +370,10 @@ std::vector<agents::SensorDef> read_sensors(Section s, const ConvexPolygon& doma
         const Vec2 p{x, y};
         if (protocols::contains(domain, p)) sensors.push_back({p, 0.0});
       }
-    layout.spacing = std::min(w / static_cast<double>(alignment == "cell_centred" ? nx : std::max<std::int64_t>(nx - 1, 1)),
-                              h / static_cast<double>(alignment == "cell_centred" ? ny : std::max<std::int64_t>(ny - 1, 1)));
+    const auto intervals = [&](std::int64_t n) {
+      return static_cast<double>(alignment == "cell_centred" ? n : alignment == "interior" ? n + 1 : std::max<std::int64_t>(n - 1, 1));
+    };
+    layout.spacing = std::min(w / intervals(nx), h / intervals(ny));
   } else {
     s.reject("nx", "'nx' applies to layout grid");
     s.reject("ny", "'ny' applies to layout grid");
@@ -403,6 +472,7 @@ std::vector<Vec2> read_robots(Section s, const ConvexPolygon& domain, std::uint6
   motion.k_v = s.number("k_v", 1.0, Range::non_negative());
   motion.max_speed = s.number("max_speed", 0.0, Range::non_negative());
   motion.substep_s = s.number("substep", 1e-3, Range::positive());
+  motion.jump_to_target = s.choice<bool>("dynamics", false, {{"second_order", false}, {"discrete_lloyd", true}});
   s.finish();
   return robots;
 }
@@ -546,7 +616,7 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
   def.world.sensors =
       read_sensors(top.section("sensors"), def.world.domain, def.seed, base_dir, reader, layout, def.world.sensor_noise_sigma);
   def.sensor_layout = layout.kind;
-  def.world.field = read_field(top.section("field"));
+  def.world.field = read_field(top.section("field"), def.world.domain);
   if (def.world.field.kind == FieldKind::acoustic && def.world.field.min_distance <= 0.0) {
     // d_min = h/2 by default: half the sensor spacing removes the singularity (SPEC §6.1).
     def.world.field.min_distance = layout.spacing > 0 ? 0.5 * layout.spacing : 0.01;
@@ -557,8 +627,9 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
   def.world.radio = read_radio(top.section("radio"));
   def.world.protocol = read_protocol(top.section("protocol"));
   def.world.beacons = read_beacons(top.section("beacons"));
+  read_control(top.section("control"), def.world.field.kind == FieldKind::diffusion, def.world.dispenser, def);
   def.output = read_output(top.section("output"), duration_ok ? def.duration_s : 0.0);
-  for (const char* later : {"control", "groups", "faults"})
+  for (const char* later : {"groups", "faults"})
     top.reject(later, std::string("section '") + later + "' is not supported by this version of masnet");
   top.finish();
   if (!reader.ok()) {

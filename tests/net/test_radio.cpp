@@ -276,3 +276,42 @@ TEST_CASE("loss draws of one link do not depend on other nodes", "[net]") {
   };
   CHECK(lost_pattern(0) == lost_pattern(7));
 }
+
+TEST_CASE("receptions bring forward the moment an idle drain empties a battery", "[net]") {
+  sim::Simulator sim;
+  net::RadioParams params;
+  params.energy.idle_power_w = 0.5;
+  params.energy.battery_j = 2.0;
+  net::Radio radio(sim, params, 1);
+  Recorder rec;
+  rec.sim = &sim;
+  radio.set_listener(&rec);
+  radio.add_static_node(sim::node_id(0), Vec2{0, 0}, 0);
+  radio.add_static_node(sim::node_id(1), Vec2{0.01, 0}, 1);
+  sim.at(sim::time_at(1.0), [&radio] {
+    for (int k = 0; k < 1000; ++k) radio.broadcast(sim::node_id(0), 0.02, beacon(sim::node_id(0)));
+  });
+  sim.run_until(sim::time_at(10.0));
+  const double bits = 8.0 * (params.sizes.header_bytes + params.sizes.id_bytes + params.sizes.position_bytes);
+  const double heard_j = 1000 * bits * params.energy.electronics_j_per_bit;
+  // Node 1 drains 0.5 W and paid for 1000 receptions: empty at (2 J − heard) / 0.5 W.
+  CHECK(sim::to_seconds(radio.stats(sim::node_id(1)).died_at) == Approx((2.0 - heard_j) / 0.5).epsilon(1e-9));
+  CHECK(radio.energy_j(sim::node_id(1)) == Approx(2.0).epsilon(1e-9));
+}
+
+TEST_CASE("looking at idle energy does not change it", "[net]") {
+  auto idle_after = [](int looks) {
+    sim::Simulator sim;
+    net::RadioParams params;
+    params.energy.idle_power_w = 0.3;
+    net::Radio radio(sim, params, 1);
+    radio.add_static_node(sim::node_id(0), Vec2{0, 0}, 0);
+    for (int k = 1; k <= looks; ++k) {
+      sim.run_until(sim::time_at(7.0 * k / looks));
+      (void)radio.stats(sim::node_id(0));
+    }
+    sim.run_until(sim::time_at(7.0));
+    return radio.stats(sim::node_id(0)).energy_idle_j;
+  };
+  CHECK(idle_after(1) == idle_after(1000));
+}

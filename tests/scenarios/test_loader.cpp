@@ -112,8 +112,12 @@ const std::vector<Case> kCases = {
       "'velocity') or 'waypoints', not both"}},
     {"gaussian_bump_bad_sigma.yaml",
      {"gaussian_bump_bad_sigma.yaml:5:35: field.bumps[0].sigma: must be > 0 (got 0)"}},
-    {"diffusion_not_available.yaml",
-     {"diffusion_not_available.yaml:3:9: field.kind: the diffusion field is not available yet"}},
+    {"diffusion_unstable_step.yaml",
+     {"diffusion_unstable_step.yaml:4:56: field.diffusion.dt: dt_s = 0.01 exceeds 0.000387909 s, the stability "
+      "limit of the single RK4 step that fidelity mode takes; use a smaller dt_s, fewer cells or mode physical "
+      "(which substeps)"}},
+    {"control_without_diffusion.yaml",
+     {"control_without_diffusion.yaml:5:15: control.dispensers: the control section applies to field kind diffusion"}},
     {"collision_level.yaml",
      {"collision_level.yaml:3:10: radio.level: level 'collision' is not available yet (use "
       "ideal or airtime)"}},
