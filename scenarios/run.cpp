@@ -11,11 +11,11 @@
 namespace masnet::scenarios {
 namespace fs = std::filesystem;
 
-Run::Run(const ScenarioDef& def)
-    : def_(def),
+Run::Run(ScenarioDef def)
+    : def_(std::move(def)),
       simulator_(std::make_unique<sim::Simulator>()),
-      world_(std::make_unique<agents::World>(*simulator_, def.world)),
-      recorder_(std::make_unique<Recorder>(*world_, def)) {
+      world_(std::make_unique<agents::World>(*simulator_, def_.world)),
+      recorder_(std::make_unique<Recorder>(*world_, def_)) {
   world_->set_observer(recorder_.get());
 }
 

@@ -18,7 +18,7 @@ using ProgressFn = std::function<void(double t_s, std::uint64_t events)>;
 
 class Run {
  public:
-  explicit Run(const ScenarioDef& def);
+  explicit Run(ScenarioDef def);
   ~Run();
 
   /// Simulates the whole duration.
@@ -36,7 +36,7 @@ class Run {
   double wall_time_s() const { return wall_time_s_; }
 
  private:
-  const ScenarioDef& def_;
+  ScenarioDef def_;  // a copy: the world and recorder refer to it for the whole run
   std::unique_ptr<sim::Simulator> simulator_;
   std::unique_ptr<agents::World> world_;
   std::unique_ptr<Recorder> recorder_;
