@@ -2,11 +2,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include "scenarios/figures.hpp"
 #include "scenarios/progress.hpp"
+#include "scenarios/report.hpp"
 #include "scenarios/run.hpp"
 #include "scenarios/scenario.hpp"
 
@@ -18,7 +21,8 @@ constexpr int kBadInput = 2;
 constexpr int kInternalError = 1;
 
 int print_diagnostics(const std::vector<Diagnostic>& diagnostics) {
-  for (const Diagnostic& d : diagnostics) std::fprintf(stderr, "%s\n", d.text().c_str());
+  for (const Diagnostic& d : diagnostics)
+    std::fprintf(stderr, "%s\n", d.text().c_str());
   return kBadInput;
 }
 
@@ -29,15 +33,19 @@ struct RunArgs {
   std::int64_t seed = -1;
   bool force = false;
   bool quiet = false;
+  bool baseline = false;
 };
 
 int command_run(const RunArgs& args) {
   std::optional<std::uint64_t> seed;
   if (args.seed >= 0) seed = static_cast<std::uint64_t>(args.seed);
-  LoadResult loaded = load_scenario(args.scenario, args.sets, seed);
+  std::vector<std::string> sets = args.sets;
+  if (args.baseline) sets.push_back("control.baseline=true");  // same as the scenario key
+  LoadResult loaded = load_scenario(args.scenario, sets, seed);
   if (!loaded.scenario) return print_diagnostics(loaded.diagnostics);
   const ScenarioDef& def = *loaded.scenario;
-  const std::string out = args.out.empty() ? "runs/" + def.name + "-seed" + std::to_string(def.seed) : args.out;
+  const std::string out =
+      args.out.empty() ? "runs/" + def.name + "-seed" + std::to_string(def.seed) : args.out;
   // Refuse before simulating: a long run must not end in "cannot write".
   if (std::string problem = check_run_directory(out, run_key(def), args.force); !problem.empty()) {
     std::fprintf(stderr, "%s\n", problem.c_str());
@@ -48,12 +56,56 @@ int command_run(const RunArgs& args) {
     ProgressBar bar(def.duration_s, !args.quiet && ProgressBar::stderr_is_terminal());
     run.execute([&](double t, std::uint64_t events) { bar.update(t, events); });
   }
-  publish_run_directory(out, [&](const std::string& dir) { run.write_files(dir); });
+  publish_run_directory(out, [&](const std::string& dir) {
+    run.write_files(dir);
+    write_sensors_csv(std::filesystem::path(dir) / "sensors.csv", def.world.sensors);
+  });
   if (!args.quiet) {
-    std::printf("%s: %.3f s simulated in %.3f s wall, %llu events, fingerprint %s\n", def.name.c_str(), def.duration_s,
-                run.wall_time_s(), static_cast<unsigned long long>(run.events()), run.fingerprint().c_str());
+    std::printf("%s: %.3f s simulated in %.3f s wall, %llu events, fingerprint %s\n",
+                def.name.c_str(), def.duration_s, run.wall_time_s(),
+                static_cast<unsigned long long>(run.events()), run.fingerprint().c_str());
     std::printf("run directory: %s\n", std::filesystem::absolute(out).string().c_str());
   }
+  if (!def.output.figures && !def.output.report) return 0;
+  // Drawn from the published files, after publishing: a failure here keeps the run's data,
+  // and `masnet render` can finish the job.
+  RenderOptions render;
+  render.figures = def.output.figures;
+  render.report = def.output.report;
+  std::filesystem::path report;
+  try {
+    report = render_run_directory(out, render);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr,
+                 "masnet: the run's data are in '%s', but its figures or report failed: %s\n",
+                 out.c_str(), e.what());
+    return kInternalError;
+  }
+  if (!args.quiet && !report.empty()) std::printf("report: %s\n", report.string().c_str());
+  return 0;
+}
+
+struct RenderArgs {
+  std::string dir;
+  bool no_oracle_cells = false;
+  bool radius_circles = false;
+  bool quiet = false;
+};
+
+int command_render(const RenderArgs& args) {
+  RenderOptions options;
+  options.figure.oracle_cells = !args.no_oracle_cells;
+  options.figure.radius_circles = args.radius_circles;
+  std::optional<RunData> data;
+  try {
+    data = load_run_data(args.dir);
+  } catch (const std::exception& e) {
+    // Missing or unreadable data files: the directory given is not a (complete) run.
+    std::fprintf(stderr, "masnet render: %s\n", e.what());
+    return kBadInput;
+  }
+  const std::filesystem::path report = render_run(*data, options);
+  if (!args.quiet) std::printf("report: %s\n", report.string().c_str());
   return 0;
 }
 
@@ -61,8 +113,8 @@ int command_validate(const std::string& scenario, const std::vector<std::string>
   LoadResult loaded = load_scenario(scenario, sets);
   if (!loaded.scenario) return print_diagnostics(loaded.diagnostics);
   const ScenarioDef& def = *loaded.scenario;
-  std::printf("%s: ok (%zu sensors, %zu robots, %.3f s)\n", scenario.c_str(), def.world.sensors.size(),
-              def.world.robots.size(), def.duration_s);
+  std::printf("%s: ok (%zu sensors, %zu robots, %.3f s)\n", scenario.c_str(),
+              def.world.sensors.size(), def.world.robots.size(), def.duration_s);
   return 0;
 }
 
@@ -77,16 +129,30 @@ int main(int argc, char** argv) {
   CLI::App* run = app.add_subcommand("run", "run a scenario and write its run directory");
   run->add_option("scenario", run_args.scenario, "scenario file (YAML)")->required();
   run->add_option("--out", run_args.out, "run directory (default: runs/<name>-seed<seed>)");
-  run->add_option("--seed", run_args.seed, "override the scenario's seed")->check(CLI::NonNegativeNumber);
+  run->add_option("--seed", run_args.seed, "override the scenario's seed")
+      ->check(CLI::NonNegativeNumber);
   run->add_option("--set", run_args.sets, "override a key: --set radio.loss=0.2 (repeatable)");
   run->add_flag("--force", run_args.force, "replace a different run's directory");
   run->add_flag("--quiet", run_args.quiet, "no progress and no summary line");
+  run->add_flag("--baseline", run_args.baseline,
+                "diffusion runs: also run without dispensers and report both (control.baseline)");
 
   std::string validate_file;
   std::vector<std::string> validate_sets;
-  CLI::App* validate = app.add_subcommand("validate", "check a scenario file and report every problem");
+  CLI::App* validate =
+      app.add_subcommand("validate", "check a scenario file and report every problem");
   validate->add_option("scenario", validate_file, "scenario file (YAML)")->required();
   validate->add_option("--set", validate_sets, "override a key before checking (repeatable)");
+
+  RenderArgs render_args;
+  CLI::App* render = app.add_subcommand(
+      "render", "redraw a run directory's figures and report from its data files");
+  render->add_option("run_dir", render_args.dir, "run directory written by masnet run")->required();
+  render->add_flag("--no-oracle-cells", render_args.no_oracle_cells,
+                   "leave out the oracle's cells (dashed)");
+  render->add_flag("--radius-circles", render_args.radius_circles,
+                   "draw each robot's radius R_i as a circle");
+  render->add_flag("--quiet", render_args.quiet, "print nothing");
 
   try {
     app.parse(argc, argv);
@@ -98,6 +164,7 @@ int main(int argc, char** argv) {
   try {
     if (*run) return command_run(run_args);
     if (*validate) return command_validate(validate_file, validate_sets);
+    if (*render) return command_render(render_args);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "masnet: internal error: %s\n", e.what());
     return kInternalError;

@@ -1,0 +1,92 @@
+#pragma once
+// The figures of a run directory (SPEC §8), drawn from its files alone — summary.json,
+// timeseries.csv, trajectories.csv, updates.csv, nodes.csv, snapshots.json, sensors.csv — so
+// that `masnet render` can restyle them without rerunning. What each figure shows:
+// docs/outputs.md.
+#include <cstddef>
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "agents/world.hpp"
+#include "scenarios/plot.hpp"
+
+namespace masnet::scenarios {
+
+/// One of our own CSV files read back (comma-separated, a header line, no quoting). Every
+/// column is available as numbers (NaN where a cell is not a number) and as text.
+class Table {
+ public:
+  /// Reads `path`; throws std::runtime_error when it cannot be opened.
+  static Table read(const std::filesystem::path& path);
+
+  std::size_t rows() const { return numbers_.empty() ? 0 : numbers_.front().size(); }
+  bool has(std::string_view name) const;
+  /// The column `name` as numbers; throws std::out_of_range when absent.
+  const std::vector<double>& column(std::string_view name) const;
+  /// The column `name` as written; throws std::out_of_range when absent.
+  const std::vector<std::string>& text(std::string_view name) const;
+  const std::vector<std::string>& names() const { return names_; }
+
+ private:
+  std::size_t index(std::string_view name) const;
+  std::vector<std::string> names_;
+  std::vector<std::vector<double>> numbers_;
+  std::vector<std::vector<std::string>> text_;
+};
+
+/// Everything the figures and the report need from a run directory.
+struct RunData {
+  std::filesystem::path dir;
+  nlohmann::json summary;                 ///< summary.json
+  nlohmann::json snapshots;               ///< snapshots.json (an array; empty when absent)
+  Table timeseries, trajectories, nodes;  ///< required files
+  Table updates;                          ///< updates.csv; no rows when not written
+  std::vector<plot::Point> sensors;       ///< sensor positions, in reading order
+  std::vector<plot::Point> domain;        ///< Ω's vertices (world units)
+  std::string name;                       ///< scenario name
+  std::string field_kind;                 ///< acoustic, diffusion, gaussian, uniform
+  double duration_s = 0.0;
+};
+
+/// Reads the run directory `dir`. Sensor positions come from sensors.csv, or from the sensor
+/// rows of nodes.csv in runs written before it existed. Throws std::runtime_error naming the
+/// file that is missing or malformed.
+RunData load_run_data(const std::filesystem::path& dir);
+
+/// Writes sensors.csv: index, x, y (world units) and area (world units², the part of Ω the
+/// sensor stands for), one row per sensor in the order of snapshots.json's readings.
+void write_sensors_csv(const std::filesystem::path& path,
+                       const std::vector<agents::SensorDef>& sensors);
+
+/// Switches of the snapshot figures (`masnet render --no-oracle-cells --radius-circles`).
+struct FigureOptions {
+  bool oracle_cells = true;     ///< the oracle's exact cells, dashed
+  bool radius_circles = false;  ///< each robot's radius R_i as a circle
+};
+
+/// A figure written as figures/<stem>.png and figures/<stem>.svg.
+struct FigureInfo {
+  std::string stem;
+  std::string kind;     ///< snapshot, field, trajectories or curve
+  std::string caption;  ///< one sentence for the report
+  double t_s = std::numeric_limits<double>::quiet_NaN();  ///< snapshot and field figures
+};
+
+/// Replaces `figures_dir` with every figure the run's data allow, and lists them in a stable
+/// order: snapshots (and field maps) by time, trajectories, then the curves.
+std::vector<FigureInfo> write_figures(const RunData& run, const std::filesystem::path& figures_dir,
+                                      const FigureOptions& options = {});
+
+/// The time part of a snapshot figure's name: 2 → "2.0", 2.6 → "2.6", 0.125 → "0.125".
+std::string snapshot_time_label(double t_s);
+
+/// The reserved stroke colours that mark the robots' computed cells (class "cell") and the
+/// oracle's cells (class "oracle-cell") in the snapshot SVGs.
+const std::vector<plot::SvgClass>& snapshot_svg_classes();
+
+}  // namespace masnet::scenarios
