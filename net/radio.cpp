@@ -49,7 +49,10 @@ void Radio::add_mobile_node(NodeId id, std::uint64_t random_key) {
   if (battery_limited() && params_.energy.idle_power_w > 0) schedule_depletion(id);
 }
 
-void Radio::set_interest(NodeId node, std::uint32_t mask) { nodes_[sim::index(node)].interest = mask; }
+void Radio::set_interest(NodeId node, std::uint32_t mask) {
+  nodes_[sim::index(node)].interest = mask;
+  index_dirty_ = true;  // the union of static interests decides which frames may be booked in bulk
+}
 
 Vec2 Radio::position(NodeId node) const {
   const Node& n = nodes_[sim::index(node)];
@@ -75,6 +78,7 @@ bool Radio::unicast(NodeId source, NodeId destination, Payload payload) {
 
 void Radio::prepare_index() {
   // Keep what each node has heard across a rebuild (nodes added after the first frame).
+  materialize();
   const std::size_t n_nodes = nodes_.size(), types = kMessageTypeCount;
   std::vector<std::uint64_t> heard(n_nodes, 0), overheard(n_nodes, 0), count(n_nodes * types, 0), bytes(n_nodes * types, 0);
   const std::size_t old_stride = heard_bytes_.size();
@@ -88,15 +92,25 @@ void Radio::prepare_index() {
       bytes[n * types + t] = rx_bytes_[t * old_stride + hot];
     }
   }
-  static_grid_.build(static_positions_, static_ids_);
-  const std::vector<NodeId>& slots = static_grid_.ids();
-  for (std::uint32_t k = 0; k < slots.size(); ++k) nodes_[sim::index(slots[k])].hot = k;
+  // Sensor grids lie on rows: index them as lines, so frames can be booked run by run.
+  use_lines_ = line_index_.build(static_positions_, static_ids_);
+  if (!use_lines_) static_grid_.build(static_positions_, static_ids_);
+  const std::vector<NodeId>& slots = use_lines_ ? line_index_.ids() : static_grid_.ids();
+  static_interest_ = 0;
+  for (std::uint32_t k = 0; k < slots.size(); ++k) {
+    nodes_[sim::index(slots[k])].hot = k;
+    static_interest_ |= nodes_[sim::index(slots[k])].interest;
+  }
   for (std::size_t m = 0; m < mobile_ids_.size(); ++m)
     nodes_[sim::index(mobile_ids_[m])].hot = static_cast<std::uint32_t>(slots.size() + m);
   heard_bytes_.assign(n_nodes, 0);
   overheard_count_.assign(n_nodes, 0);
   rx_count_.assign(n_nodes * types, 0);
   rx_bytes_.assign(n_nodes * types, 0);
+  heard_diff_.assign(n_nodes + 1, 0);
+  overheard_diff_.assign(n_nodes + 1, 0);
+  rx_count_diff_.assign((n_nodes + 1) * types, 0);
+  rx_bytes_diff_.assign((n_nodes + 1) * types, 0);
   for (std::size_t n = 0; n < n_nodes; ++n) {
     const std::uint32_t hot = nodes_[n].hot;
     heard_bytes_[hot] = heard[n];
@@ -109,7 +123,34 @@ void Radio::prepare_index() {
   index_dirty_ = false;
 }
 
+void Radio::materialize() const {
+  if (!diffs_pending_) return;
+  const std::size_t n = heard_bytes_.size();
+  std::uint64_t heard = 0, overheard = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    heard += heard_diff_[k];
+    overheard += overheard_diff_[k];
+    heard_bytes_[k] += heard;
+    overheard_count_[k] += overheard;
+  }
+  std::fill(heard_diff_.begin(), heard_diff_.end(), 0);
+  std::fill(overheard_diff_.begin(), overheard_diff_.end(), 0);
+  for (std::size_t t = 0; t < kMessageTypeCount; ++t) {
+    std::uint64_t count = 0, bytes = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      count += rx_count_diff_[t * (n + 1) + k];
+      bytes += rx_bytes_diff_[t * (n + 1) + k];
+      rx_count_[t * n + k] += count;
+      rx_bytes_[t * n + k] += bytes;
+    }
+  }
+  std::fill(rx_count_diff_.begin(), rx_count_diff_.end(), 0);
+  std::fill(rx_bytes_diff_.begin(), rx_bytes_diff_.end(), 0);
+  diffs_pending_ = false;
+}
+
 TypeCounters Radio::counters(NodeId node, MessageType type) const {
+  materialize();
   const auto t = static_cast<std::size_t>(type);
   TypeCounters c = tx_counters_[sim::index(node) * kMessageTypeCount + t];
   const std::uint32_t hot = nodes_[sim::index(node)].hot;
@@ -141,6 +182,7 @@ double Radio::idle_j(const Node& node) const {
 
 NodeRadioStats Radio::stats(NodeId node) {
   if (index_dirty_) prepare_index();
+  materialize();
   const Node& n = nodes_[sim::index(node)];
   NodeRadioStats s;
   s.heard_bytes = heard_bytes_[n.hot];
@@ -278,22 +320,77 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   };
 
   const Vec2 center = position(source);
-  const NodeId* const slots = static_grid_.ids().data();
   // Hot indices compared instead of ids: the inner loops load nothing but coordinates.
   const std::uint32_t source_hot = src.hot;
   const std::uint32_t destination_hot =
       destination == sim::kNoNode ? kNoHotIndex : nodes_[sim::index(destination)].hot;
-  if (destination == sim::kNoNode) {
-    static_grid_.for_each_slot_within(center, range, [&](std::uint32_t k, double) {
-      if (k != source_hot) receive(slots[k], k);
+  const std::uint32_t static_count = static_cast<std::uint32_t>(static_ids_.size());
+  const bool is_broadcast = destination == sim::kNoNode;
+  // Booked in bulk: frames no static node needs to see one by one — overheard unicasts, and
+  // broadcasts of a type no sensor listens to when nothing can be lost — unless a battery makes
+  // every reception a question of survival.
+  const bool bulk = use_lines_ && !battery &&
+                    (!is_broadcast || (params_.loss <= 0 && (static_interest_ & type_bit) == 0));
+  if (use_lines_) {
+    const NodeId* const slots = line_index_.ids().data();
+    std::uint64_t* const count_diff = rx_count_diff_.data() + type_index * (static_cast<std::size_t>(heard_bytes_.size()) + 1);
+    std::uint64_t* const bytes_diff = rx_bytes_diff_.data() + type_index * (static_cast<std::size_t>(heard_bytes_.size()) + 1);
+    line_index_.for_each_run_within(center, range, [&](std::uint32_t a, std::uint32_t c) {
+      if (bulk) {
+        heard_diff_[a] += bytes;
+        heard_diff_[c] -= bytes;
+        hearers += c - a;
+        if (is_broadcast) {
+          ++count_diff[a];
+          --count_diff[c];
+          bytes_diff[a] += bytes;
+          bytes_diff[c] -= bytes;
+          received += c - a;
+        } else {
+          ++overheard_diff_[a];
+          --overheard_diff_[c];
+        }
+        return;
+      }
+      for (std::uint32_t k = a; k < c; ++k) {
+        if (k == source_hot || k == destination_hot) continue;
+        if (is_broadcast)
+          receive(slots[k], k);
+        else
+          overhear(slots[k], k);
+      }
     });
+    if (bulk) {
+      diffs_pending_ = true;
+      // The runs included the sender (and a static addressee): take them out again.
+      for (const std::uint32_t hot : {source_hot, destination_hot}) {
+        if (hot >= static_count || !line_index_.within(hot, center, range)) continue;
+        heard[hot] -= bytes;
+        --hearers;
+        if (is_broadcast) {
+          --rx_count[hot];
+          rx_bytes[hot] -= bytes;
+          --received;
+        } else {
+          --overheard[hot];
+        }
+      }
+    }
+  } else {
+    const NodeId* const slots = static_grid_.ids().data();
+    static_grid_.for_each_slot_within(center, range, [&](std::uint32_t k, double) {
+      if (k == source_hot || k == destination_hot) return;
+      if (is_broadcast)
+        receive(slots[k], k);
+      else
+        overhear(slots[k], k);
+    });
+  }
+  if (is_broadcast) {
     for_each_mobile_within(center, range, [&](NodeId id) {
       if (id != source) receive(id, nodes_[sim::index(id)].hot);
     });
   } else {
-    static_grid_.for_each_slot_within(center, range, [&](std::uint32_t k, double) {
-      if (k != source_hot && k != destination_hot) overhear(slots[k], k);
-    });
     for_each_mobile_within(center, range, [&](NodeId id) {
       if (id != source && id != destination) overhear(id, nodes_[sim::index(id)].hot);
     });

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "net/energy.hpp"
+#include "net/line_index.hpp"
 #include "net/messages.hpp"
 #include "net/spatial_grid.hpp"
 #include "net/vec2.hpp"
@@ -158,6 +159,8 @@ class Radio {
 
   bool transmit(NodeId source, NodeId destination, double range, Payload&& payload);
   void prepare_index();
+  /// Folds the bulk (run-length) bookings into the per-node counters.
+  void materialize() const;
   void prepare_mobile_index();
   bool battery_limited() const { return params_.energy.battery_j > 0; }
   double consumed_j(const Node& node) const;
@@ -184,12 +187,21 @@ class Radio {
   double total_tx_j_ = 0.0;
   std::uint64_t total_heard_bytes_ = 0;
   // E_rx is linear in bits, so a node's receive energy is E_elec·8·(bytes it heard).
-  std::vector<std::uint64_t> heard_bytes_, overheard_count_;  // [hot]
-  std::vector<std::uint64_t> rx_count_, rx_bytes_;            // [type][hot]
+  // `mutable`: bulk bookings are kept as difference arrays over slots and folded in when read.
+  mutable std::vector<std::uint64_t> heard_bytes_, overheard_count_;  // [hot]
+  mutable std::vector<std::uint64_t> rx_count_, rx_bytes_;            // [type][hot]
+  // Bulk bookings (sensor grids, no battery): a frame heard by a run of slots [a, c) adds at a
+  // and subtracts at c; unsigned wrap-around keeps the folded sums exact.
+  mutable std::vector<std::uint64_t> heard_diff_, overheard_diff_;    // [hot + 1]
+  mutable std::vector<std::uint64_t> rx_count_diff_, rx_bytes_diff_;  // [type][hot + 1]
+  mutable bool diffs_pending_ = false;
 
   std::vector<NodeId> static_ids_, mobile_ids_;
   std::vector<Vec2> static_positions_;
   SpatialGrid static_grid_, mobile_grid_;
+  LineIndex line_index_;  // used instead of static_grid_ when the static nodes lie on rows
+  bool use_lines_ = false;
+  std::uint32_t static_interest_ = 0;  // union of the static nodes' interest masks
   bool index_dirty_ = true;
   sim::Time mobile_index_time_{};
   bool mobile_index_valid_ = false;

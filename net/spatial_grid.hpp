@@ -1,6 +1,7 @@
 #pragma once
 // A uniform grid over a set of points, stored cell by cell (CSR) with positions copied in
 // cell order, so a range query scans a few contiguous runs of memory (one per grid row).
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -40,8 +41,11 @@ class SpatialGrid {
     if (ids_.empty() || !(radius >= 0.0)) return;
     const double r2 = radius * radius;
     const double cx = center.x(), cy = center.y();
-    const int row_lo = row_of(cy - radius);
-    const int row_hi = row_of(cy + radius);
+    // Candidate rows and columns are widened by a hair: a point at exactly the range (common on
+    // sensor grids) must reach the exact test below, whatever the rounding of cy ± radius.
+    const double slack = 1e-12 * (std::fabs(cx) + std::fabs(cy) + radius) + 1e-300;
+    const int row_lo = row_of(cy - radius - slack);
+    const int row_hi = row_of(cy + radius + slack);
     // Local pointers: the visitor's stores must not make the compiler reload them.
     const double* const xs = xs_.data();
     const double* const ys = ys_.data();
@@ -51,8 +55,8 @@ class SpatialGrid {
       const double row_y0 = y0_ + row * cell_, row_y1 = row_y0 + cell_;
       const double dy = cy < row_y0 ? row_y0 - cy : (cy > row_y1 ? cy - row_y1 : 0.0);
       const double half2 = r2 - dy * dy;
-      if (half2 < 0.0) continue;
-      const double half = std::sqrt(half2);
+      if (half2 < -slack * radius) continue;
+      const double half = std::sqrt(std::max(half2, 0.0)) + slack;
       const int col_lo = col_of(cx - half);
       const int col_hi = col_of(cx + half);
       const std::uint32_t begin = starts[row * nx_ + col_lo];

@@ -315,3 +315,74 @@ TEST_CASE("looking at idle energy does not change it", "[net]") {
   };
   CHECK(idle_after(1) == idle_after(1000));
 }
+
+TEST_CASE("frames booked in bulk on a sensor grid give every node exactly the brute-force counts",
+          "[net]") {
+  // A 30 × 30 grid (indexed as lines and booked run by run) plus moving robots; random
+  // broadcasts of a type the sensors ignore (bulk), of a type they listen to (one by one), and
+  // unicasts with their overhearers (bulk).
+  sim::Simulator sim;
+  net::RadioParams params;
+  params.max_range = 0.5;
+  net::Radio radio(sim, params, 3);
+  Recorder rec;
+  rec.sim = &sim;
+  LinearMotion motion;
+  motion.sim = &sim;
+  radio.set_listener(&rec);
+  radio.set_mobile_positions(&motion);
+  const int side = 30, robots = 40, sensors = side * side;
+  const std::uint32_t sensor_interest = 1u << static_cast<unsigned>(net::MessageType::position);
+  for (int j = 0; j < side; ++j)
+    for (int i = 0; i < side; ++i) {
+      const auto id = static_cast<std::uint32_t>(j * side + i);
+      radio.add_static_node(sim::node_id(id), Vec2{(i + 0.5) / side, (j + 0.5) / side}, id);
+      radio.set_interest(sim::node_id(id), sensor_interest);
+    }
+  sim::RandomStream rng(11);
+  for (int r = 0; r < robots; ++r) {
+    const auto id = static_cast<std::uint32_t>(sensors + r);
+    motion.lines[id] = {Vec2{rng.uniform01(), rng.uniform01()}, Vec2{rng.uniform(-0.2, 0.2), rng.uniform(-0.2, 0.2)}};
+    radio.add_mobile_node(sim::node_id(id), id);
+  }
+  const int n = sensors + robots;
+  std::vector<std::uint64_t> heard(n, 0), overheard(n, 0), delivered(n, 0);
+  auto send = [&](std::uint32_t src, std::uint32_t dst, double range, int kind) {
+    const Vec2 p = radio.position(sim::node_id(src));
+    net::Payload payload = kind == 0 ? net::Payload{net::Discover{sim::node_id(src), p, range}}
+                                     : net::Payload{net::Position{sim::node_id(src), p}};
+    const auto bytes = net::size_bytes(payload, params.sizes);
+    const bool unicast = dst != src;
+    const double r = std::min(unicast ? (radio.position(sim::node_id(dst)) - p).norm() : range, params.max_range);
+    for (int j = 0; j < n; ++j) {
+      if (static_cast<std::uint32_t>(j) == src) continue;
+      const Vec2 q = radio.position(sim::node_id(j));
+      const double dx = q.x() - p.x(), dy = q.y() - p.y();
+      const bool in = unicast && static_cast<std::uint32_t>(j) == dst ? (q - p).norm() <= r : dx * dx + dy * dy <= r * r;
+      if (!in) continue;
+      heard[j] += bytes;
+      if (unicast && static_cast<std::uint32_t>(j) != dst) ++overheard[j];
+    }
+    if (unicast)
+      radio.unicast(sim::node_id(src), sim::node_id(dst), std::move(payload));
+    else
+      radio.broadcast(sim::node_id(src), range, std::move(payload));
+  };
+  for (int k = 0; k < 600; ++k) {
+    const double t = rng.uniform(0.0, 3.0);
+    const auto src = static_cast<std::uint32_t>(rng.below(n));
+    auto dst = static_cast<std::uint32_t>(rng.below(n));
+    const int kind = static_cast<int>(rng.below(3));  // 0 DISCOVER (bulk), 1 POSITION, 2 unicast
+    if (kind != 2) dst = src;
+    if (kind == 2 && dst == src) dst = (src + 1) % n;
+    const double range = rng.uniform(0.0, 0.6);
+    sim.at(sim::time_at(t), [&send, src, dst, range, kind] { send(src, dst, range, kind == 2 ? 1 : kind); });
+  }
+  sim.run();
+  for (int j = 0; j < n; ++j) {
+    const net::NodeRadioStats s = radio.stats(sim::node_id(j));
+    INFO("node " << j);
+    REQUIRE(s.heard_bytes == heard[j]);
+    REQUIRE(s.overheard_count == overheard[j]);
+  }
+}

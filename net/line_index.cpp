@@ -1,0 +1,57 @@
+#include "net/line_index.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+namespace masnet::net {
+
+bool LineIndex::build(std::span<const Vec2> positions, std::span<const sim::NodeId> ids, double min_mean_length) {
+  lines_.clear();
+  xs_.clear();
+  ys_.clear();
+  ids_.clear();
+  const std::size_t n = positions.size();
+  if (n == 0) return false;
+  std::vector<std::uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  // By y, then x, then input order (a stable layout for coincident points).
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    if (positions[a].y() != positions[b].y()) return positions[a].y() < positions[b].y();
+    return positions[a].x() < positions[b].x();
+  });
+  std::size_t line_count = 1;
+  for (std::size_t k = 1; k < n; ++k) line_count += positions[order[k]].y() != positions[order[k - 1]].y() ? 1 : 0;
+  if (static_cast<double>(n) / static_cast<double>(line_count) < min_mean_length) return false;
+
+  xs_.resize(n);
+  ys_.resize(n);
+  ids_.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    xs_[k] = positions[order[k]].x();
+    ys_[k] = positions[order[k]].y();
+    ids_[k] = ids[order[k]];
+  }
+  for (std::uint32_t begin = 0; begin < n;) {
+    std::uint32_t end = begin + 1;
+    while (end < n && ys_[end] == ys_[begin]) ++end;
+    Line line{ys_[begin], begin, end, xs_[begin], 0.0, false};
+    const std::uint32_t count = end - begin;
+    if (count >= 2) {
+      // Evenly spaced (to 1e-9 of the spacing): slot estimates are then exact up to ±1, and the
+      // exact test corrects any error in either case.
+      const double dx = (xs_[end - 1] - xs_[begin]) / static_cast<double>(count - 1);
+      bool even = dx > 0.0;
+      for (std::uint32_t k = begin; even && k < end; ++k)
+        even = std::fabs(xs_[k] - (xs_[begin] + static_cast<double>(k - begin) * dx)) <= 1e-9 * dx;
+      if (even) {
+        line.inv_dx = 1.0 / dx;
+        line.even = true;
+      }
+    }
+    lines_.push_back(line);
+    begin = end;
+  }
+  return true;
+}
+
+}  // namespace masnet::net

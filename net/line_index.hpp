@@ -1,0 +1,99 @@
+#pragma once
+// Static points grouped into horizontal lines (equal y), each sorted by x. When the points lie
+// on rows — a sensor grid — a disk meets every line in one contiguous run of slots, found with a
+// few exact distance tests: a range query costs O(lines crossed), not O(points inside). The
+// radio uses it to book a frame heard by thousands of sensors as a handful of runs.
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "net/vec2.hpp"
+#include "sim/ids.hpp"
+
+namespace masnet::net {
+
+class LineIndex {
+ public:
+  /// Indexes the points if they form lines of at least `min_mean_length` points on average;
+  /// returns false (and stays empty) otherwise.
+  bool build(std::span<const Vec2> positions, std::span<const sim::NodeId> ids, double min_mean_length = 8.0);
+
+  /// Points in line-major order: slot k holds ids()[k].
+  const std::vector<sim::NodeId>& ids() const { return ids_; }
+  bool empty() const { return ids_.empty(); }
+
+  /// True iff slot k is within `radius` of `center`: the same arithmetic as the run search, and
+  /// as SpatialGrid, so a point is in or out whatever index found it.
+  bool within(std::uint32_t k, const Vec2& center, double radius) const {
+    const double ddx = xs_[k] - center.x(), ddy = ys_[k] - center.y();
+    return ddx * ddx + ddy * ddy <= radius * radius;
+  }
+
+  /// Calls `visit(begin, end)` for each run of slots [begin, end) whose points lie within
+  /// `radius` of `center` (inclusive), one run per line crossed.
+  template <class Visit>
+  void for_each_run_within(const Vec2& center, double radius, Visit&& visit) const {
+    if (lines_.empty() || !(radius >= 0.0)) return;
+    const double r2 = radius * radius, cx = center.x(), cy = center.y();
+    const double* const xs = xs_.data();
+    // Lines are picked with a hair of slack; the exact test decides (a point at exactly the
+    // range must not be lost to the rounding of cy ± radius).
+    const double slack = 1e-12 * (std::fabs(cx) + std::fabs(cy) + radius) + 1e-300;
+    std::size_t lo = 0, hi = lines_.size();
+    while (lo < hi) {
+      const std::size_t mid = (lo + hi) / 2;
+      if (lines_[mid].y < cy - radius - slack) lo = mid + 1; else hi = mid;
+    }
+    for (std::size_t l = lo; l < lines_.size() && lines_[l].y <= cy + radius + slack; ++l) {
+      const Line& line = lines_[l];
+      const double ddy = line.y - cy, dy2 = ddy * ddy;
+      if (dy2 > r2) continue;
+      auto inside = [&](std::uint32_t k) {
+        const double ddx = xs[k] - cx;
+        return ddx * ddx + dy2 <= r2;
+      };
+      const double half = std::sqrt(r2 - dy2);  // starting points only: the steps below are exact
+      // Start from an estimate (exact position for evenly spaced lines), then step with the
+      // exact test: the run is where `inside` holds, an interval of the sorted line.
+      std::uint32_t a = estimate(line, cx - half, true), c = estimate(line, cx + half, false);
+      while (a > line.begin && inside(a - 1)) --a;
+      while (a < line.end && !inside(a) && xs[a] < cx) ++a;
+      if (c < a) c = a;
+      while (c < line.end && inside(c)) ++c;
+      while (c > a && !inside(c - 1)) --c;
+      if (a < c) visit(a, c);
+    }
+  }
+
+ private:
+  struct Line {
+    double y;
+    std::uint32_t begin, end;  // slots
+    double x0, inv_dx;         // evenly spaced lines: slot ≈ begin + (x − x0)·inv_dx
+    bool even;
+  };
+  // A slot near x on the line: first slot with x_k >= x (from_left) or one past the last with
+  // x_k <= x; evenly spaced lines answer in O(1), others by binary search.
+  std::uint32_t estimate(const Line& line, double x, bool from_left) const {
+    if (line.even) {
+      const double k = (x - line.x0) * line.inv_dx;
+      const double i = from_left ? std::ceil(k) : std::floor(k) + 1.0;
+      if (!(i > 0.0)) return line.begin;
+      if (i >= static_cast<double>(line.end - line.begin)) return line.end;
+      return line.begin + static_cast<std::uint32_t>(i);
+    }
+    std::uint32_t lo = line.begin, hi = line.end;
+    while (lo < hi) {
+      const std::uint32_t mid = lo + (hi - lo) / 2;
+      if (from_left ? xs_[mid] < x : xs_[mid] <= x) lo = mid + 1; else hi = mid;
+    }
+    return lo;
+  }
+
+  std::vector<Line> lines_;
+  std::vector<double> xs_, ys_;
+  std::vector<sim::NodeId> ids_;
+};
+
+}  // namespace masnet::net
