@@ -27,7 +27,6 @@ void Radio::add_static_node(NodeId id, const Vec2& position, std::uint64_t rando
   node.hot = kNoHotIndex;
   node.added_at = simulator_.now();
   nodes_.push_back(node);
-  tx_counters_.resize(nodes_.size() * kMessageTypeCount);
   static_ids_.push_back(id);
   static_positions_.push_back(position);
   index_dirty_ = true;
@@ -42,7 +41,6 @@ void Radio::add_mobile_node(NodeId id, std::uint64_t random_key) {
   node.hot = kNoHotIndex;
   node.added_at = simulator_.now();
   nodes_.push_back(node);
-  tx_counters_.resize(nodes_.size() * kMessageTypeCount);
   mobile_ids_.push_back(id);
   index_dirty_ = true;
   mobile_index_valid_ = false;
@@ -92,6 +90,16 @@ void Radio::prepare_index() {
       bytes[n * types + t] = rx_bytes_[t * old_stride + hot];
     }
   }
+  // Per-type tx counters are by node id with a stride of the node count: re-lay them out.
+  std::vector<std::uint64_t> tx_count(n_nodes * types, 0), tx_bytes(n_nodes * types, 0);
+  const std::size_t old_nodes = tx_count_.size() / types;
+  for (std::size_t t = 0; t < types; ++t)
+    for (std::size_t n = 0; n < old_nodes; ++n) {
+      tx_count[t * n_nodes + n] = tx_count_[t * old_nodes + n];
+      tx_bytes[t * n_nodes + n] = tx_bytes_[t * old_nodes + n];
+    }
+  tx_count_ = std::move(tx_count);
+  tx_bytes_ = std::move(tx_bytes);
   // Sensor grids lie on rows: index them as lines, so frames can be booked run by run.
   use_lines_ = line_index_.build(static_positions_, static_ids_);
   if (!use_lines_) static_grid_.build(static_positions_, static_ids_);
@@ -103,6 +111,8 @@ void Radio::prepare_index() {
   }
   for (std::size_t m = 0; m < mobile_ids_.size(); ++m)
     nodes_[sim::index(mobile_ids_[m])].hot = static_cast<std::uint32_t>(slots.size() + m);
+  interest_.assign(n_nodes, 0);
+  for (const Node& node : nodes_) interest_[node.hot] = node.interest;
   heard_bytes_.assign(n_nodes, 0);
   overheard_count_.assign(n_nodes, 0);
   rx_count_.assign(n_nodes * types, 0);
@@ -152,7 +162,12 @@ void Radio::materialize() const {
 TypeCounters Radio::counters(NodeId node, MessageType type) const {
   materialize();
   const auto t = static_cast<std::size_t>(type);
-  TypeCounters c = tx_counters_[sim::index(node) * kMessageTypeCount + t];
+  TypeCounters c;
+  const std::size_t stride = tx_count_.size() / kMessageTypeCount;  // nodes at the last indexing
+  if (sim::index(node) < stride) {
+    c.tx_count = tx_count_[t * stride + sim::index(node)];
+    c.tx_bytes = tx_bytes_[t * stride + sim::index(node)];
+  }
   const std::uint32_t hot = nodes_[sim::index(node)].hot;
   if (hot != kNoHotIndex) {
     c.rx_count = rx_count_[t * heard_bytes_.size() + hot];
@@ -265,9 +280,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   total_tx_j_ += tx_j;
   if (battery && params_.energy.idle_power_w > 0) schedule_depletion(source);
   const auto type_index = static_cast<std::size_t>(type);
-  TypeCounters& tx = tx_counters_[sim::index(source) * kMessageTypeCount + type_index];
-  ++tx.tx_count;
-  tx.tx_bytes += bytes;
+  ++tx_count_[type_index * nodes_.size() + sim::index(source)];
+  tx_bytes_[type_index * nodes_.size() + sim::index(source)] += bytes;
   ++totals_[type_index].tx_count;
   totals_[type_index].tx_bytes += bytes;
   const std::uint64_t frame_number = src.frames_sent++;
@@ -295,21 +309,23 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   std::uint64_t* const rx_bytes = rx_bytes_.data() + type_index * heard_bytes_.size();
   std::uint64_t received = 0;
   const bool drains = battery && params_.energy.idle_power_w > 0;
+  const std::uint32_t* const interest = interest_.data();
   auto receive = [&](NodeId id, std::uint32_t hot) {
     if (battery && !afford(id, rx_j)) return;
     heard[hot] += bytes;
     ++hearers;
     if (drains) schedule_depletion(id);  // the idle drain now ends sooner
-    Node& node = nodes_[sim::index(id)];
-    if (params_.loss > 0 &&
-        sim::keyed_uniform01(seed_, kLossPurpose, src.random_key, node.random_key, frame_number) < params_.loss) {
-      ++node.lost_count;
-      return;
+    if (params_.loss > 0) {
+      Node& node = nodes_[sim::index(id)];
+      if (sim::keyed_uniform01(seed_, kLossPurpose, src.random_key, node.random_key, frame_number) < params_.loss) {
+        ++node.lost_count;
+        return;
+      }
     }
     ++rx_count[hot];
     rx_bytes[hot] += bytes;
     ++received;
-    if (node.interest & type_bit) receivers.push_back(id);
+    if (interest[hot] & type_bit) receivers.push_back(id);
   };
   auto overhear = [&](NodeId id, std::uint32_t hot) {
     if (battery && !afford(id, rx_j)) return;
@@ -434,7 +450,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
 }
 
 void Radio::hand_over(const Frame& frame, NodeId receiver) {
-  if (!nodes_[sim::index(receiver)].alive) return;  // died while the frame was in the air
+  // Died while the frame was in the air (only batteries kill; skip the lookup otherwise).
+  if (battery_limited() && !nodes_[sim::index(receiver)].alive) return;
   sim::Fingerprint& fp = simulator_.fingerprint();
   fp.mix((std::uint64_t{sim::index(frame.source)} << 32) | sim::index(receiver));
   fp.mix((std::uint64_t{static_cast<std::uint8_t>(frame.type)} << 32) | frame.size_bytes);

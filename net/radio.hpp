@@ -136,7 +136,8 @@ class Radio {
   // Cold per-node state. The counters touched by every hearer of a frame live apart in
   // `heard_bytes_` / `overheard_count_`, indexed by a "hot index": static nodes by their
   // slot in the spatial grid (so a range query walks contiguous memory), mobile nodes after.
-  struct Node {
+  // What a transmission touches comes first: one cache line per sender (64 bytes).
+  struct alignas(64) Node {
     Vec2 position{0, 0};  // static nodes only
     bool mobile = false;
     bool alive = true;
@@ -144,9 +145,10 @@ class Radio {
     std::uint32_t hot = 0;
     std::uint64_t random_key = 0;
     std::uint64_t frames_sent = 0;
-    std::uint64_t lost_count = 0, unreachable_count = 0, refused_count = 0;
     double energy_tx_j = 0.0;
     sim::Time busy_until{};
+    // Rarely touched.
+    std::uint64_t lost_count = 0, unreachable_count = 0, refused_count = 0;
     sim::Time added_at{};  // idle drain runs from here to min(now, died_at)
     sim::Time died_at = sim::kTimeMax;
     sim::EventId depletion_event;
@@ -182,7 +184,7 @@ class Radio {
   const MobilePositions* mobile_ = nullptr;
 
   std::vector<Node> nodes_;
-  std::vector<TypeCounters> tx_counters_;  // [node][type]; only tx fields are used
+  std::vector<std::uint64_t> tx_count_, tx_bytes_;  // [type][node]
   std::array<TypeCounters, kMessageTypeCount> totals_{};
   double total_tx_j_ = 0.0;
   std::uint64_t total_heard_bytes_ = 0;
@@ -202,6 +204,7 @@ class Radio {
   LineIndex line_index_;  // used instead of static_grid_ when the static nodes lie on rows
   bool use_lines_ = false;
   std::uint32_t static_interest_ = 0;  // union of the static nodes' interest masks
+  std::vector<std::uint32_t> interest_;  // [hot]: read for every receiver of a broadcast
   bool index_dirty_ = true;
   sim::Time mobile_index_time_{};
   bool mobile_index_valid_ = false;
