@@ -83,6 +83,8 @@ class World::RobotAgent final : public protocols::RobotHost {
     if (world_.observer_) world_.observer_->on_update(index_, record);
   }
   double sensor_area(NodeId sensor) const override {
+    // Equal areas (every layout but a sensor file with areas): no lookup per reading.
+    if (world_.uniform_sensor_area_ > 0.0) return world_.uniform_sensor_area_;
     return world_.def_.sensors[sim::index(sensor) - world_.robots_.size()].area;
   }
   protocols::RobotCell true_cell() override { return world_.oracle_cell(index_); }
@@ -153,6 +155,11 @@ World::World(sim::Simulator& simulator, const WorldDef& def)
     ids.push_back(sensor_node(s));
   }
   sensor_grid_.build(positions, ids);
+  if (!def_.sensors.empty()) {
+    uniform_sensor_area_ = def_.sensors.front().area;
+    for (const SensorDef& s : def_.sensors)
+      if (s.area != uniform_sensor_area_) uniform_sensor_area_ = 0.0;
+  }
   sensor_states_.assign(def_.sensors.size(), protocols::SensorState{});
   sensor_read_counts_.assign(def_.sensors.size(), 0);
   if (def_.field.kind == FieldKind::diffusion) diffusion_ = std::make_unique<DiffusionField>(def_.field.diffusion);

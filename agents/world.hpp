@@ -147,6 +147,7 @@ class World final : public net::RadioListener, public net::MobilePositions {
   std::unique_ptr<DiffusionField> diffusion_;
   std::vector<double> spray_rate_, neutraliser_used_;  // per robot
   std::uint64_t readings_taken_ = 0;
+  double uniform_sensor_area_ = 0.0;  // > 0 when every sensor stands for the same area
   WorldObserver* observer_ = nullptr;
 };
 

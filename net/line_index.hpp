@@ -3,6 +3,7 @@
 // on rows — a sensor grid — a disk meets every line in one contiguous run of slots, found with a
 // few exact distance tests: a range query costs O(lines crossed), not O(points inside). The
 // radio uses it to book a frame heard by thousands of sensors as a handful of runs.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -77,11 +78,15 @@ class LineIndex {
   // x_k <= x; evenly spaced lines answer in O(1), others by binary search.
   std::uint32_t estimate(const Line& line, double x, bool from_left) const {
     if (line.even) {
+      // ceil(k) (from the left) or floor(k) + 1 without calling libm: truncation is floor for
+      // k >= 0, and baseline x86-64 has no rounding instruction.
       const double k = (x - line.x0) * line.inv_dx;
-      const double i = from_left ? std::ceil(k) : std::floor(k) + 1.0;
-      if (!(i > 0.0)) return line.begin;
-      if (i >= static_cast<double>(line.end - line.begin)) return line.end;
-      return line.begin + static_cast<std::uint32_t>(i);
+      const double count = static_cast<double>(line.end - line.begin);
+      if (!(k >= 0.0)) return line.begin;  // ceil(k) <= 0 and floor(k) + 1 <= 0
+      if (k >= count) return line.end;
+      const auto t = static_cast<std::uint32_t>(k);
+      const std::uint32_t i = from_left ? t + (static_cast<double>(t) < k ? 1u : 0u) : t + 1u;
+      return std::min(line.begin + i, line.end);
     }
     std::uint32_t lo = line.begin, hi = line.end;
     while (lo < hi) {

@@ -117,8 +117,7 @@ void Radio::prepare_index() {
   overheard_count_.assign(n_nodes, 0);
   rx_count_.assign(n_nodes * types, 0);
   rx_bytes_.assign(n_nodes * types, 0);
-  heard_diff_.assign(n_nodes + 1, 0);
-  overheard_diff_.assign(n_nodes + 1, 0);
+  heard_diff_.assign(2 * (n_nodes + 1), 0);
   rx_count_diff_.assign((n_nodes + 1) * types, 0);
   rx_bytes_diff_.assign((n_nodes + 1) * types, 0);
   for (std::size_t n = 0; n < n_nodes; ++n) {
@@ -138,13 +137,12 @@ void Radio::materialize() const {
   const std::size_t n = heard_bytes_.size();
   std::uint64_t heard = 0, overheard = 0;
   for (std::size_t k = 0; k < n; ++k) {
-    heard += heard_diff_[k];
-    overheard += overheard_diff_[k];
+    heard += heard_diff_[2 * k];
+    overheard += heard_diff_[2 * k + 1];
     heard_bytes_[k] += heard;
     overheard_count_[k] += overheard;
   }
   std::fill(heard_diff_.begin(), heard_diff_.end(), 0);
-  std::fill(overheard_diff_.begin(), overheard_diff_.end(), 0);
   for (std::size_t t = 0; t < kMessageTypeCount; ++t) {
     std::uint64_t count = 0, bytes = 0;
     for (std::size_t k = 0; k < n; ++k) {
@@ -353,8 +351,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     std::uint64_t* const bytes_diff = rx_bytes_diff_.data() + type_index * (static_cast<std::size_t>(heard_bytes_.size()) + 1);
     line_index_.for_each_run_within(center, range, [&](std::uint32_t a, std::uint32_t c) {
       if (bulk) {
-        heard_diff_[a] += bytes;
-        heard_diff_[c] -= bytes;
+        heard_diff_[2 * a] += bytes;
+        heard_diff_[2 * c] -= bytes;
         hearers += c - a;
         if (is_broadcast) {
           ++count_diff[a];
@@ -363,8 +361,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
           bytes_diff[c] -= bytes;
           received += c - a;
         } else {
-          ++overheard_diff_[a];
-          --overheard_diff_[c];
+          ++heard_diff_[2 * a + 1];
+          --heard_diff_[2 * c + 1];
         }
         return;
       }

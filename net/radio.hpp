@@ -194,7 +194,8 @@ class Radio {
   mutable std::vector<std::uint64_t> rx_count_, rx_bytes_;            // [type][hot]
   // Bulk bookings (sensor grids, no battery): a frame heard by a run of slots [a, c) adds at a
   // and subtracts at c; unsigned wrap-around keeps the folded sums exact.
-  mutable std::vector<std::uint64_t> heard_diff_, overheard_diff_;    // [hot + 1]
+  // Interleaved: one run end touches one cache line. [2·hot] heard bytes, [2·hot + 1] overheard.
+  mutable std::vector<std::uint64_t> heard_diff_;  // [2·(hot + 1)]
   mutable std::vector<std::uint64_t> rx_count_diff_, rx_bytes_diff_;  // [type][hot + 1]
   mutable bool diffs_pending_ = false;
 

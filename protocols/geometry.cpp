@@ -582,13 +582,16 @@ double max_vertex_distance(const ConvexPolygon& polygon, const Vec2& point) {
   return std::sqrt(d2);
 }
 
-bool contains(const ConvexPolygon& polygon, const Vec2& point) {
-  const auto& v = polygon.vertices;
+bool contains(std::span<const Vec2> v, const Vec2& point) {
   if (v.size() < 3) return false;
-  for (std::size_t i = 0; i < v.size(); ++i)
-    if (orientation(v[i], v[(i + 1) % v.size()], point) < 0) return false;
+  // Edges (prev, i) walk the polygon without a modulo per step: this runs for every sensor that
+  // hears a SENSE.
+  for (std::size_t prev = v.size() - 1, i = 0; i < v.size(); prev = i++)
+    if (orientation(v[prev], v[i], point) < 0) return false;
   return true;
 }
+
+bool contains(const ConvexPolygon& polygon, const Vec2& point) { return contains(std::span<const Vec2>(polygon.vertices), point); }
 
 bool is_gabriel_neighbour(const Vec2& a, const Vec2& b, std::span<const Vec2> others) {
   // q is strictly inside the circle on diameter ab iff the angle aqb is obtuse.

@@ -123,6 +123,8 @@ double max_vertex_distance(const ConvexPolygon& polygon, const Vec2& point);
 /// Closed-set membership: boundary points are inside. Decided by the exact sign of each edge's
 /// cross product (no tolerance). False for the empty polygon.
 bool contains(const ConvexPolygon& polygon, const Vec2& point);
+/// The same for the vertices of a convex polygon held elsewhere (e.g. in a message).
+bool contains(std::span<const Vec2> vertices, const Vec2& point);
 
 /// Sign of the cross product (b − a) × (c − a), computed exactly: +1 when c is left of the
 /// directed line a→b, −1 right, 0 on it. Coordinates must not overflow or underflow.
