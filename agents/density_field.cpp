@@ -24,11 +24,20 @@ double AnalyticField::value(const Vec2& s, double t_s) { return evaluate(s, t_s,
 double AnalyticField::peek(const Vec2& s, double t_s) { return evaluate(s, t_s, false); }
 
 double AnalyticField::evaluate(const Vec2& s, double t_s, bool count) {
+  if (def_.kind == FieldKind::acoustic || def_.kind == FieldKind::gaussian) move_to(t_s);
+  return point_value(s, count);
+}
+
+void AnalyticField::row_values(double y, const double* xs, std::size_t n, double t_s, double* out) {
+  if (def_.kind == FieldKind::acoustic || def_.kind == FieldKind::gaussian) move_to(t_s);
+  for (std::size_t k = 0; k < n; ++k) out[k] = point_value(Vec2{xs[k], y}, true);
+}
+
+double AnalyticField::point_value(const Vec2& s, bool count) {
   switch (def_.kind) {
     case FieldKind::uniform:
     case FieldKind::diffusion: return def_.uniform_value;
     case FieldKind::acoustic: {
-      move_to(t_s);
       double rho = 0.0;
       const double d2_min = def_.min_distance * def_.min_distance;
       for (std::size_t k = 0; k < def_.targets.size(); ++k) {
@@ -43,7 +52,6 @@ double AnalyticField::evaluate(const Vec2& s, double t_s, bool count) {
       return rho;
     }
     case FieldKind::gaussian: {
-      move_to(t_s);
       double rho = 0.0;
       for (std::size_t b = 0; b < def_.bumps.size(); ++b) {
         const GaussianBump& bump = def_.bumps[b];

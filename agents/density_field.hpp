@@ -53,6 +53,9 @@ class AnalyticField {
   double value(const Vec2& s, double t_s);
   /// ρ(s, t) without touching the clamp counter (for metrics and figures).
   double peek(const Vec2& s, double t_s);
+  /// ρ at the n points (xs[k], y) at time t into out[k] — the same arithmetic as value(), with
+  /// the per-call work done once for the row (the oracle's scanline pass).
+  void row_values(double y, const double* xs, std::size_t n, double t_s, double* out);
 
   std::uint64_t clamped_readings() const { return clamped_; }
   const FieldDef& def() const { return def_; }
@@ -61,6 +64,7 @@ class AnalyticField {
 
  private:
   double evaluate(const Vec2& s, double t_s, bool count);
+  double point_value(const Vec2& s, bool count);  // after move_to
   void move_to(double t_s);
 
   FieldDef def_;

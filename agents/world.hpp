@@ -11,6 +11,7 @@
 #include "agents/density_field.hpp"
 #include "agents/diffusion_field.hpp"
 #include "agents/robot_motion.hpp"
+#include "net/line_index.hpp"
 #include "net/radio.hpp"
 #include "protocols/sensor_protocol.hpp"
 #include "protocols/voronoi_protocol.hpp"
@@ -104,6 +105,9 @@ class World final : public net::RadioListener, public net::MobilePositions {
   double true_density(std::size_t sensor);
   /// The exact Voronoi cell of `robot` among the true robot positions now.
   protocols::RobotCell oracle_cell(std::size_t robot);
+  /// Adds every sensor inside `cell` with its reading now to `accumulator` (the oracle's
+  /// sensing pass; no messages); returns how many.
+  std::uint32_t read_sensors_in(const protocols::ConvexPolygon& cell, protocols::CentroidAccumulator& accumulator);
   /// Positions of the field's moving entities now (targets, bump centres).
   std::vector<Vec2> source_positions() const;
   std::uint64_t clamped_readings() const { return field_.clamped_readings(); }
@@ -126,8 +130,6 @@ class World final : public net::RadioListener, public net::MobilePositions {
   class SensorContext;
 
   double sensor_reading(std::size_t sensor);
-  std::uint32_t read_sensors_in(const protocols::ConvexPolygon& cell,
-                                protocols::CentroidAccumulator& accumulator);
   void sensor_timer(std::size_t sensor, std::uint32_t kind);
   void send_beacon(NodeId node);
   void pde_step();
@@ -144,6 +146,8 @@ class World final : public net::RadioListener, public net::MobilePositions {
   std::vector<protocols::SensorState> sensor_states_;
   std::vector<std::uint32_t> sensor_read_counts_;  // keys the noise draws
   net::SpatialGrid sensor_grid_;
+  net::LineIndex sensor_lines_;  // the oracle's scanline pass over sensor rows
+  std::vector<double> row_buffer_;
   std::unique_ptr<DiffusionField> diffusion_;
   std::vector<double> spray_rate_, neutraliser_used_;  // per robot
   std::uint64_t readings_taken_ = 0;

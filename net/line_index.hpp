@@ -23,6 +23,28 @@ class LineIndex {
   /// Points in line-major order: slot k holds ids()[k].
   const std::vector<sim::NodeId>& ids() const { return ids_; }
   bool empty() const { return ids_.empty(); }
+  const double& x(std::uint32_t k) const { return xs_[k]; }
+  double y(std::uint32_t k) const { return ys_[k]; }
+
+  /// Calls `visit(line, y, begin, end)` for every line with y in [y0, y1]: its slots [begin, end).
+  template <class Visit>
+  void for_each_line_between(double y0, double y1, Visit&& visit) const {
+    std::size_t lo = 0, hi = lines_.size();
+    while (lo < hi) {
+      const std::size_t mid = (lo + hi) / 2;
+      if (lines_[mid].y < y0) lo = mid + 1; else hi = mid;
+    }
+    for (std::size_t l = lo; l < lines_.size() && lines_[l].y <= y1; ++l)
+      visit(l, lines_[l].y, lines_[l].begin, lines_[l].end);
+  }
+  /// First slot of `line` whose x is >= value (the line's end if none).
+  std::uint32_t first_at_or_after(std::size_t line, double value) const {
+    const Line& l = lines_[line];
+    std::uint32_t k = estimate(l, value, true);
+    while (k > l.begin && xs_[k - 1] >= value) --k;
+    while (k < l.end && xs_[k] < value) ++k;
+    return k;
+  }
 
   /// True iff slot k is within `radius` of `center`: the same arithmetic as the run search, and
   /// as SpatialGrid, so a point is in or out whatever index found it.

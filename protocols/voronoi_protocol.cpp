@@ -71,6 +71,7 @@ void VoronoiProtocol::begin_update() {
   record_.position = position_;
   neighbours_.clear();
   readings_.clear();
+  sensed_cell_.clear();
   if (params_.kind == ProtocolKind::oracle) {
     run_oracle_update();
     return;
@@ -100,6 +101,7 @@ void VoronoiProtocol::end_round() {
   // readings that are still inside the shrinking V_i).
   phase_ = Phase::sensing;
   const double sense_range = std::min(radius_m_, max_vertex_distance(cell_.polygon, position_));
+  sensed_cell_ = cell_.polygon.vertices;
   const std::uint32_t bytes =
       host_.broadcast(sense_range, net::Sense{host_.id(), update_, cell_.polygon.vertices});
   count(net::MessageType::sense, bytes);
@@ -138,7 +140,7 @@ void VoronoiProtocol::finish_update(bool truncated) {
   CentroidAccumulator accumulator(context_.scaling);
   cell_readings_.clear();
   for (const HeardReading& r : readings_)
-    if (contains(cell_.polygon, r.position)) {
+    if (in_cell(r.position)) {
       accumulator.add(r.position, r.value, host_.sensor_area(r.sensor));
       cell_readings_.push_back({r.position, r.value});
       ++record_.readings;
@@ -239,10 +241,16 @@ void VoronoiProtocol::count(net::MessageType type, std::uint32_t bytes) {
   tally.bytes += bytes;
 }
 
+bool VoronoiProtocol::in_cell(const Vec2& p) const {
+  // Sensors answered because they lie in the cell sent with SENSE (the same exact test): while
+  // the cell is still that one, every reading is inside without testing it again.
+  return cell_.polygon.vertices == sensed_cell_ || contains(cell_.polygon, p);
+}
+
 double VoronoiProtocol::farthest_reading_in_cell() const {
   double farthest = 0.0;
   for (const HeardReading& r : readings_)
-    if (contains(cell_.polygon, r.position))
+    if (in_cell(r.position))
       farthest = std::max(farthest, (r.position - position_).norm());
   return farthest;
 }

@@ -106,6 +106,7 @@ class VoronoiProtocol {
   void answer_discover(const net::Discover& discover);
   void count(net::MessageType type, std::uint32_t bytes);
   double farthest_reading_in_cell() const;
+  bool in_cell(const Vec2& p) const;
   Cell compute_cell() const;
 
   RobotHost& host_;
@@ -131,7 +132,8 @@ class VoronoiProtocol {
   Vec2 position_{0, 0};              // p_i for the whole update
   std::vector<HeardNeighbour> neighbours_;
   std::vector<HeardReading> readings_;
-  Cell cell_;                        // Ω ∩ bisectors (no disk): the V_i sent in SENSE
+  Cell cell_;                        // Ω ∩ bisectors (no disk): the current V_i
+  std::vector<Vec2> sensed_cell_;    // the V_i sent in this update's SENSE
 };
 
 }  // namespace masnet::protocols

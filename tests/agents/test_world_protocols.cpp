@@ -120,3 +120,42 @@ TEST_CASE("the same world and seed give the same fingerprint; another seed a dif
   CHECK(fingerprint(7) == fingerprint(7));
   CHECK(fingerprint(7) != fingerprint(8));
 }
+
+TEST_CASE("the oracle's scanline pass selects exactly the sensors an exact point test selects",
+          "[agents]") {
+  // Robots on a grid put cell edges exactly through sensor rows and columns; random robots give
+  // general cells. Every cell's sensor set must equal the brute-force set of contains().
+  for (int layout = 0; layout < 6; ++layout) {
+    WorldDef def;
+    def.seed = 5;
+    def.domain = protocols::rectangle(0, 0, 1, 1);
+    const int side = 40;
+    for (int j = 0; j < side; ++j)
+      for (int i = 0; i < side; ++i) def.sensors.push_back({Vec2{(i + 0.5) / side, (j + 0.5) / side}, 1.0 / (side * side)});
+    sim::RandomStream rng(static_cast<std::uint64_t>(layout));
+    if (layout % 2 == 0) {
+      for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) def.robots.push_back(Vec2{(i + 0.5) / 4, (j + 0.5) / 4});
+    } else {
+      for (int r = 0; r < 25; ++r) def.robots.push_back(Vec2{rng.uniform01(), rng.uniform01()});
+    }
+    def.field.kind = agents::FieldKind::uniform;
+    sim::Simulator simulator;
+    World world(simulator, def);
+    for (std::size_t r = 0; r < world.robot_count(); ++r) {
+      const protocols::ConvexPolygon cell = world.oracle_cell(r).polygon;
+      protocols::CentroidAccumulator fast{protocols::DensityScaling{}}, brute{protocols::DensityScaling{}};
+      const std::uint32_t selected = world.read_sensors_in(cell, fast);
+      std::uint32_t expected = 0;
+      for (const agents::SensorDef& s : def.sensors)
+        if (protocols::contains(cell, s.position)) {
+          brute.add(s.position, 1.0, s.area);
+          ++expected;
+        }
+      INFO("layout " << layout << " robot " << r);
+      CHECK(selected == expected);
+      REQUIRE(fast.has_mass() == brute.has_mass());
+      if (fast.has_mass()) CHECK((fast.centroid() - brute.centroid()).norm() < 1e-12);
+    }
+  }
+}
