@@ -12,6 +12,7 @@
 #include "scenarios/report.hpp"
 #include "scenarios/run.hpp"
 #include "scenarios/scenario.hpp"
+#include "scenarios/sweep_command.hpp"
 
 using namespace masnet::scenarios;
 
@@ -154,6 +155,9 @@ int main(int argc, char** argv) {
                    "draw each robot's radius R_i as a circle");
   render->add_flag("--quiet", render_args.quiet, "print nothing");
 
+  SweepArgs sweep_args;
+  CLI::App* sweep = add_sweep_subcommand(app, sweep_args);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -165,6 +169,7 @@ int main(int argc, char** argv) {
     if (*run) return command_run(run_args);
     if (*validate) return command_validate(validate_file, validate_sets);
     if (*render) return command_render(render_args);
+    if (*sweep) return run_sweep_command(sweep_args);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "masnet: internal error: %s\n", e.what());
     return kInternalError;

@@ -107,7 +107,7 @@ TEST_CASE("loss lowers cell correctness but every update still terminates", "[ag
   CHECK(lossy_rate < clean_rate);
 }
 
-TEST_CASE("the same world and seed give the same fingerprint; another seed a different one", "[agents]") {
+TEST_CASE("the same world and seed give the same fingerprint and another seed a different one", "[agents]") {
   auto fingerprint = [](std::uint64_t seed) {
     WorldDef def = layout(3, protocols::StopCriterion::sensors, 0.1);
     def.seed = seed;
