@@ -204,12 +204,12 @@ void VoronoiProtocol::on_frame(const net::Frame& frame) {
   } else if (const auto* neighbour = std::get_if<net::Neighbor>(&frame.payload)) {
     if (phase_ != Phase::discovering && phase_ != Phase::sensing) return;  // late reply
     count(net::MessageType::neighbor, frame.size_bytes);
-    auto known = std::find_if(neighbours_.begin(), neighbours_.end(),
-                              [&](const HeardNeighbour& n) { return n.robot == neighbour->robot; });
-    if (known != neighbours_.end())
-      known->position = neighbour->position;
-    else
-      neighbours_.push_back({neighbour->robot, neighbour->position});
+    // A neighbour is taken at the position of its first reply in this update: later replies
+    // (from later rounds) would move the bisectors under the stop rule, and with R ← 2d — no
+    // margin — drifting neighbours could keep an update growing round after round.
+    const bool known = std::any_of(neighbours_.begin(), neighbours_.end(),
+                                   [&](const HeardNeighbour& n) { return n.robot == neighbour->robot; });
+    if (!known) neighbours_.push_back({neighbour->robot, neighbour->position});
   } else if (const auto* reading = std::get_if<net::Reading>(&frame.payload)) {
     if (phase_ == Phase::idle || phase_ == Phase::initialising || reading->update != update_) return;
     count(net::MessageType::reading, frame.size_bytes);
