@@ -159,3 +159,30 @@ TEST_CASE("the oracle's scanline pass selects exactly the sensors an exact point
     }
   }
 }
+
+TEST_CASE("adding a sensor or a robot changes no other node's random draws", "[agents]") {
+  // The robots' update phases are drawn from streams keyed by role and index: the first update
+  // of every existing robot starts at the same instant whatever is added.
+  auto first_updates = [](int extra_sensors, int extra_robots) {
+    WorldDef def = layout(4, protocols::StopCriterion::sensors);
+    for (int k = 0; k < extra_sensors; ++k) def.sensors.push_back({Vec2{0.013 * (k + 1), 0.37}, 1.0 / 400});
+    for (int k = 0; k < extra_robots; ++k) def.robots.push_back(Vec2{0.9, 0.11 * (k + 1)});
+    struct FirstStart : agents::WorldObserver {
+      std::vector<double> started;
+      void on_update(std::size_t robot, const protocols::UpdateRecord& r) override {
+        if (robot < started.size() && started[robot] < 0) started[robot] = sim::to_seconds(r.started);
+      }
+    } observer;
+    observer.started.assign(def.robots.size() - static_cast<std::size_t>(extra_robots), -1.0);
+    sim::Simulator simulator;
+    World world(simulator, def);
+    world.set_observer(&observer);
+    world.start();
+    simulator.run_until(sim::time_at(0.05));
+    return observer.started;
+  };
+  const std::vector<double> base = first_updates(0, 0);
+  for (double t : base) CHECK(t > 0.0);
+  CHECK(first_updates(3, 0) == base);
+  CHECK(first_updates(0, 2) == base);
+}
