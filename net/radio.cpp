@@ -19,32 +19,31 @@ Radio::Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t
                 "radio parameters are validated by the scenario loader");
 }
 
-void Radio::add_static_node(NodeId id, const Vec2& position, std::uint64_t random_key) {
+void Radio::add_node(NodeId id, Node node) {
   MASNET_ASSERT(sim::index(id) == nodes_.size(), "node ids are dense from 0");
-  Node node;
-  node.position = position;
-  node.random_key = random_key;
-  node.hot = kNoHotIndex;
+  node.hot = kNoHotIndex;  // given by the next prepare_index()
   node.added_at = simulator_.now();
   nodes_.push_back(node);
-  static_ids_.push_back(id);
-  static_positions_.push_back(position);
   index_dirty_ = true;
   if (battery_limited() && params_.energy.idle_power_w > 0) schedule_depletion(id);
 }
 
+void Radio::add_static_node(NodeId id, const Vec2& position, std::uint64_t random_key) {
+  static_ids_.push_back(id);
+  static_positions_.push_back(position);
+  Node node;
+  node.position = position;
+  node.random_key = random_key;
+  add_node(id, node);
+}
+
 void Radio::add_mobile_node(NodeId id, std::uint64_t random_key) {
-  MASNET_ASSERT(sim::index(id) == nodes_.size(), "node ids are dense from 0");
+  mobile_ids_.push_back(id);
+  mobile_index_valid_ = false;
   Node node;
   node.mobile = true;
   node.random_key = random_key;
-  node.hot = kNoHotIndex;
-  node.added_at = simulator_.now();
-  nodes_.push_back(node);
-  mobile_ids_.push_back(id);
-  index_dirty_ = true;
-  mobile_index_valid_ = false;
-  if (battery_limited() && params_.energy.idle_power_w > 0) schedule_depletion(id);
+  add_node(id, node);
 }
 
 void Radio::set_interest(NodeId node, std::uint32_t mask) {

@@ -159,6 +159,7 @@ class Radio {
     std::uint32_t pending = 0;
   };
 
+  void add_node(NodeId id, Node node);
   bool transmit(NodeId source, NodeId destination, double range, Payload&& payload);
   void prepare_index();
   /// Folds the bulk (run-length) bookings into the per-node counters.

@@ -14,14 +14,6 @@ namespace masnet::scenarios {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-namespace {
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read '" + path.string() + "'");
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 std::string escape_html(std::string_view s) {
   std::string out;
   out.reserve(s.size());
@@ -44,6 +36,14 @@ std::string escape_html(std::string_view s) {
     }
   }
   return out;
+}
+
+namespace {
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read '" + path.string() + "'");
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // Text placed inside <script>: "</" would end the element early.

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "scenarios/figures.hpp"
@@ -22,6 +23,9 @@ struct ReportOptions {
 
 /// The Chart.js file the report would inline, if any (see ReportOptions::chartjs).
 std::optional<std::filesystem::path> find_chartjs(const ReportOptions& options);
+
+/// Text made safe for HTML content and attribute values (& < > ").
+std::string escape_html(std::string_view text);
 
 /// Writes `run.dir`/report.html from the run's data and the figures already written in
 /// `figures_dir` (none listed: the report says figures are off). Returns the file's path.

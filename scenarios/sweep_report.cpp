@@ -66,29 +66,6 @@ const std::vector<SweepReportMetric>& sweep_report_metrics() {
 
 namespace {
 
-std::string escape_html(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 // Four significant digits, in fixed notation where that stays readable (50654, 45.70, 0.2408).
 std::string number(double v) {
   if (!std::isfinite(v)) return "—";
