@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "net/vec2.hpp"
@@ -54,9 +55,10 @@ class LineIndex {
   }
 
   /// Calls `visit(begin, end)` for each run of slots [begin, end) whose points lie within
-  /// `radius` of `center` (inclusive), one run per line crossed.
-  template <class Visit>
-  void for_each_run_within(const Vec2& center, double radius, Visit&& visit) const {
+  /// `radius` of `center` (inclusive), one run per line crossed. `prefetch(a, c)` (optional) is
+  /// told every line's estimated run first, so the caller can prefetch what it will touch there.
+  template <class Visit, class Prefetch>
+  void for_each_run_within(const Vec2& center, double radius, Visit&& visit, Prefetch&& prefetch) const {
     if (lines_.empty() || !(radius >= 0.0)) return;
     const double r2 = radius * radius, cx = center.x(), cy = center.y();
     const double* const xs = xs_.data();
@@ -68,25 +70,51 @@ class LineIndex {
       const std::size_t mid = (lo + hi) / 2;
       if (lines_[mid].y < cy - radius - slack) lo = mid + 1; else hi = mid;
     }
-    for (std::size_t l = lo; l < lines_.size() && lines_[l].y <= cy + radius + slack; ++l) {
-      const Line& line = lines_[l];
-      const double ddy = line.y - cy, dy2 = ddy * ddy;
-      if (dy2 > r2) continue;
-      auto inside = [&](std::uint32_t k) {
-        const double ddx = xs[k] - cx;
-        return ddx * ddx + dy2 <= r2;
-      };
-      const double half = std::sqrt(r2 - dy2);  // starting points only: the steps below are exact
-      // Start from an estimate (exact position for evenly spaced lines), then step with the
-      // exact test: the run is where `inside` holds, an interval of the sorted line.
-      std::uint32_t a = estimate(line, cx - half, true), c = estimate(line, cx + half, false);
-      while (a > line.begin && inside(a - 1)) --a;
-      while (a < line.end && !inside(a) && xs[a] < cx) ++a;
-      if (c < a) c = a;
-      while (c < line.end && inside(c)) ++c;
-      while (c > a && !inside(c - 1)) --c;
-      if (a < c) visit(a, c);
+    // Two passes over batches of lines: first the estimates, with prefetches of the memory each
+    // line will touch (on large networks every line is a cache miss: overlapping them is most of
+    // the cost), then the exact steps.
+    struct Pending {
+      std::uint32_t line, a, c;
+      double dy2;
+    };
+    constexpr std::size_t kBatch = 32;
+    Pending pending[kBatch];
+    std::size_t l = lo;
+    while (l < lines_.size() && lines_[l].y <= cy + radius + slack) {
+      std::size_t n = 0;
+      for (; n < kBatch && l < lines_.size() && lines_[l].y <= cy + radius + slack; ++l) {
+        const Line& line = lines_[l];
+        const double ddy = line.y - cy, dy2 = ddy * ddy;
+        if (dy2 > r2) continue;
+        const double half = std::sqrt(r2 - dy2);  // starting points only: the steps are exact
+        const std::uint32_t a = estimate(line, cx - half, true), c = estimate(line, cx + half, false);
+        __builtin_prefetch(xs + (a > line.begin ? a - 1 : a));
+        __builtin_prefetch(xs + (c < line.end ? c : c - 1));
+        prefetch(a, c);
+        pending[n++] = Pending{static_cast<std::uint32_t>(l), a, c, dy2};
+      }
+      for (std::size_t i = 0; i < n; ++i) {
+        const Line& line = lines_[pending[i].line];
+        const double dy2 = pending[i].dy2;
+        auto inside = [&](std::uint32_t k) {
+          const double ddx = xs[k] - cx;
+          return ddx * ddx + dy2 <= r2;
+        };
+        // From the estimate (exact for evenly spaced lines) step with the exact test: the run is
+        // where `inside` holds, an interval of the sorted line.
+        std::uint32_t a = pending[i].a, c = pending[i].c;
+        while (a > line.begin && inside(a - 1)) --a;
+        while (a < line.end && !inside(a) && xs[a] < cx) ++a;
+        if (c < a) c = a;
+        while (c < line.end && inside(c)) ++c;
+        while (c > a && !inside(c - 1)) --c;
+        if (a < c) visit(a, c);
+      }
     }
+  }
+  template <class Visit>
+  void for_each_run_within(const Vec2& center, double radius, Visit&& visit) const {
+    for_each_run_within(center, radius, std::forward<Visit>(visit), [](std::uint32_t, std::uint32_t) {});
   }
 
  private:

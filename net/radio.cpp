@@ -342,12 +342,20 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   // Booked in bulk: frames no static node needs to see one by one — overheard unicasts, and
   // broadcasts of a type no sensor listens to when nothing can be lost — unless a battery makes
   // every reception a question of survival.
-  const bool bulk = use_lines_ && !battery &&
-                    (!is_broadcast || (params_.loss <= 0 && (static_interest_ & type_bit) == 0));
+  // Booked in bulk whenever no reception can fail (no battery, no loss): energy and counters
+  // go in as runs; the nodes that want the frame (interest) are collected as receivers.
+  const bool bulk = use_lines_ && !battery && (!is_broadcast || params_.loss <= 0);
+  const bool collect = is_broadcast && (static_interest_ & type_bit) != 0;
   if (use_lines_) {
     const NodeId* const slots = line_index_.ids().data();
     std::uint64_t* const count_diff = rx_count_diff_.data() + type_index * (static_cast<std::size_t>(heard_bytes_.size()) + 1);
     std::uint64_t* const bytes_diff = rx_bytes_diff_.data() + type_index * (static_cast<std::size_t>(heard_bytes_.size()) + 1);
+    // Prefetch the difference-array entries a bulk booking will update.
+    auto prefetch = [&](std::uint32_t a, std::uint32_t c) {
+      if (!bulk) return;
+      __builtin_prefetch(heard_diff_.data() + 2 * a, 1);
+      __builtin_prefetch(heard_diff_.data() + 2 * c, 1);
+    };
     line_index_.for_each_run_within(center, range, [&](std::uint32_t a, std::uint32_t c) {
       if (bulk) {
         heard_diff_[2 * a] += bytes;
@@ -359,6 +367,9 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
           bytes_diff[a] += bytes;
           bytes_diff[c] -= bytes;
           received += c - a;
+          if (collect)
+            for (std::uint32_t k = a; k < c; ++k)
+              if (k != source_hot && (interest[k] & type_bit)) receivers.push_back(slots[k]);
         } else {
           ++heard_diff_[2 * a + 1];
           --heard_diff_[2 * c + 1];
@@ -372,7 +383,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
         else
           overhear(slots[k], k);
       }
-    });
+    }, prefetch);
     if (bulk) {
       diffs_pending_ = true;
       // The runs included the sender (and a static addressee): take them out again.
