@@ -110,7 +110,8 @@ class World::SensorContext final : public protocols::SensorHost {
  public:
   SensorContext(World& world, std::size_t sensor) : world_(world), sensor_(sensor) {}
   NodeId id() const override { return world_.sensor_node(sensor_); }
-  Vec2 position() const override { return world_.def_.sensors[sensor_].position; }
+  // From the radio's record of the node, which the reply's transmission reads anyway.
+  Vec2 position() const override { return world_.radio_.position(id()); }
   double reading() override { return world_.sensor_reading(sensor_); }
   std::uint32_t unicast(NodeId to, net::Payload payload) override {
     const std::uint32_t bytes = net::size_bytes(payload, world_.radio_.params().sizes);

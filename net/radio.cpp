@@ -440,13 +440,20 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   f.frame.range = range;
   f.frame.sent_at = now;
   f.frame.payload = std::move(payload);
-  f.receivers.assign(receivers.begin(), receivers.end());
+  if (receivers.size() == 1) {
+    f.only = receivers[0];
+    f.receivers.clear();
+  } else {
+    f.only = sim::kNoNode;
+    f.receivers.assign(receivers.begin(), receivers.end());
+  }
   if (params_.jitter_s <= 0) {
     // One event delivers to every receiver in id order: the same order separate events with
     // consecutive sequence numbers would give, at a fraction of the cost.
     f.pending = 1;
     simulator_.at(arrival, [this, flight] { deliver(flight); });
   } else {
+    if (f.only != sim::kNoNode) f.receivers.assign(1, f.only);  // one event per receiver below
     f.pending = static_cast<std::uint32_t>(f.receivers.size());
     for (NodeId id : f.receivers) {
       const double u = sim::keyed_uniform01(seed_, kJitterPurpose, src.random_key,
@@ -468,7 +475,10 @@ void Radio::hand_over(const Frame& frame, NodeId receiver) {
 
 void Radio::deliver(std::uint32_t flight) {
   const InFlight& f = flights_[flight];
-  for (NodeId id : f.receivers) hand_over(f.frame, id);
+  if (f.only != sim::kNoNode)
+    hand_over(f.frame, f.only);
+  else
+    for (NodeId id : f.receivers) hand_over(f.frame, id);
   free_flights_.push_back(flight);
 }
 

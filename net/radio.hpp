@@ -155,7 +155,8 @@ class Radio {
   };
   struct InFlight {
     Frame frame;
-    std::vector<NodeId> receivers;
+    NodeId only = sim::kNoNode;     // the receiver, when there is one (unicasts): no indirection
+    std::vector<NodeId> receivers;  // otherwise, in id order
     std::uint32_t pending = 0;
   };
 
