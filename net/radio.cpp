@@ -40,6 +40,7 @@ void Radio::add_static_node(NodeId id, const Vec2& position, std::uint64_t rando
 void Radio::add_mobile_node(NodeId id, std::uint64_t random_key) {
   mobile_ids_.push_back(id);
   mobile_index_valid_ = false;
+  mobile_cache_valid_ = false;
   Node node;
   node.mobile = true;
   node.random_key = random_key;
@@ -171,6 +172,17 @@ TypeCounters Radio::counters(NodeId node, MessageType type) const {
     c.rx_bytes = rx_bytes_[t * heard_bytes_.size() + hot];
   }
   return c;
+}
+
+const std::vector<Vec2>& Radio::mobile_positions_now() {
+  const sim::Time now = simulator_.now();
+  if (!mobile_cache_valid_ || mobile_cache_time_ != now || mobile_cache_.size() != mobile_ids_.size()) {
+    mobile_cache_.resize(mobile_ids_.size());
+    for (std::size_t m = 0; m < mobile_ids_.size(); ++m) mobile_cache_[m] = mobile_->position(mobile_ids_[m]);
+    mobile_cache_time_ = now;
+    mobile_cache_valid_ = true;
+  }
+  return mobile_cache_;
 }
 
 void Radio::prepare_mobile_index() {

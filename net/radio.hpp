@@ -95,7 +95,10 @@ class Radio {
     if (speed > margin_speed_) margin_speed_ = speed;
   }
   /// A mobile node jumped (no speed bound covers it): rebuild the mobile index on next use.
-  void mobile_node_jumped() { mobile_index_valid_ = false; }
+  void mobile_node_jumped() {
+    mobile_index_valid_ = false;
+    mobile_cache_valid_ = false;
+  }
 
   /// Broadcasts `payload` with range `range` (world units, capped at max_range). Every
   /// node within range at send time hears it and pays E_rx. Returns false if refused.
@@ -166,6 +169,9 @@ class Radio {
   /// Folds the bulk (run-length) bookings into the per-node counters.
   void materialize() const;
   void prepare_mobile_index();
+  /// Positions of the (few) mobile nodes now, asked once per simulated instant: a burst of
+  /// replies sent at one instant scans them many times.
+  const std::vector<Vec2>& mobile_positions_now();
   bool battery_limited() const { return params_.energy.battery_j > 0; }
   double consumed_j(const Node& node) const;
   bool afford(NodeId node, double energy_j);
@@ -212,6 +218,9 @@ class Radio {
   sim::Time mobile_index_time_{};
   bool mobile_index_valid_ = false;
   double margin_speed_ = 0.0;  // speed bound since the mobile index was built
+  std::vector<Vec2> mobile_cache_;  // by mobile index, at mobile_cache_time_
+  sim::Time mobile_cache_time_{};
+  bool mobile_cache_valid_ = false;
 
   std::deque<InFlight> flights_;  // deque: a frame stays put while handlers send new ones
   std::vector<std::uint32_t> free_flights_;
@@ -223,8 +232,9 @@ void Radio::for_each_mobile_within(const Vec2& center, double range, Visit&& vis
   if (mobile_ids_.empty()) return;
   const double r2 = range * range;
   if (mobile_ids_.size() <= kMobileScanLimit) {
-    for (NodeId id : mobile_ids_)
-      if ((mobile_->position(id) - center).squaredNorm() <= r2) visit(id);
+    const std::vector<Vec2>& positions = mobile_positions_now();
+    for (std::size_t m = 0; m < mobile_ids_.size(); ++m)
+      if ((positions[m] - center).squaredNorm() <= r2) visit(mobile_ids_[m]);
     return;
   }
   // The index may be stale: widen the search by how far any node can have moved since it
