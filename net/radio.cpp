@@ -463,7 +463,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     // One event delivers to every receiver in id order: the same order separate events with
     // consecutive sequence numbers would give, at a fraction of the cost.
     f.pending = 1;
-    simulator_.at(arrival, [this, flight] { deliver(flight); });
+    schedule_delivery(flight, arrival);
   } else {
     if (f.only != sim::kNoNode) f.receivers.assign(1, f.only);  // one event per receiver below
     f.pending = static_cast<std::uint32_t>(f.receivers.size());
@@ -483,6 +483,33 @@ void Radio::hand_over(const Frame& frame, NodeId receiver) {
   fp.mix((std::uint64_t{sim::index(frame.source)} << 32) | sim::index(receiver));
   fp.mix((std::uint64_t{static_cast<std::uint8_t>(frame.type)} << 32) | frame.size_bytes);
   if (listener_) listener_->on_frame(receiver, frame);
+}
+
+void Radio::schedule_delivery(std::uint32_t flight, sim::Time arrival) {
+  if (open_batch_ != 0xFFFFFFFFu && open_batch_time_ == arrival && simulator_.last_sequence() == open_batch_sequence_) {
+    batches_[open_batch_].push_back(flight);
+    return;
+  }
+  std::uint32_t batch;
+  if (!free_batches_.empty()) {
+    batch = free_batches_.back();
+    free_batches_.pop_back();
+  } else {
+    batch = static_cast<std::uint32_t>(batches_.size());
+    batches_.emplace_back();
+  }
+  batches_[batch].assign(1, flight);
+  const sim::EventId event = simulator_.at(arrival, [this, batch] { run_batch(batch); });
+  open_batch_ = batch;
+  open_batch_time_ = arrival;
+  open_batch_sequence_ = event.sequence;
+}
+
+void Radio::run_batch(std::uint32_t batch) {
+  if (open_batch_ == batch) open_batch_ = 0xFFFFFFFFu;  // closed: what it triggers goes elsewhere
+  // By index: deliveries may schedule new batches, which can reallocate batches_.
+  for (std::size_t i = 0; i < batches_[batch].size(); ++i) deliver(batches_[batch][i]);
+  free_batches_.push_back(batch);
 }
 
 void Radio::deliver(std::uint32_t flight) {

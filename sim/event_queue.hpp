@@ -25,6 +25,8 @@ struct EventId {
 
 class EventQueue {
  public:
+  /// The sequence number the most recent push received (0 before any).
+  std::uint64_t last_sequence() const { return next_sequence_ - 1; }
   /// Keys and slots currently held, cancelled ones included.
   std::size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }

@@ -44,6 +44,10 @@ class Simulator {
   void stop() { stop_requested_ = true; }
 
   std::uint64_t events_run() const { return events_run_; }
+  /// The sequence number of the most recently scheduled event: if it is still the one a caller
+  /// got from `at`, nothing was scheduled since (lets a caller extend that event instead of
+  /// scheduling a new one right behind it).
+  std::uint64_t last_sequence() const { return queue_.last_sequence(); }
   std::size_t pending() const { return queue_.size() - cancelled_pending_; }
 
   /// The fingerprint of everything executed so far. Models mix payload digests into it

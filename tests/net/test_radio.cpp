@@ -176,6 +176,46 @@ TEST_CASE("delay is latency plus airtime, and a transmitter sends one frame at a
   CHECK(rec.deliveries[1].at_s == Approx(2 * air + 1e-4).epsilon(1e-9));
 }
 
+TEST_CASE("frames due together share one event unless something was scheduled between them",
+          "[net]") {
+  // Four senders broadcast at t = 0 to one listener; their frames arrive at the same instant.
+  // `marker_after` >= 0 schedules a marker event at that instant between two transmissions:
+  // it must run between those frames, exactly where a separate event per frame would put it.
+  const auto run = [](int marker_after, sim::Time at, std::vector<int>& order, sim::Time& arrival) {
+    sim::Simulator sim;
+    net::Radio radio(sim, net::RadioParams{}, 1);
+    struct : net::RadioListener {
+      sim::Simulator* sim;
+      std::vector<int>* order;
+      sim::Time* arrival;
+      void on_frame(NodeId, const net::Frame& f) override {
+        order->push_back(static_cast<int>(sim::index(f.source)));
+        *arrival = sim->now();
+      }
+    } listener;
+    listener.sim = &sim;
+    listener.order = &order;
+    listener.arrival = &arrival;
+    radio.set_listener(&listener);
+    for (std::uint32_t i = 0; i < 4; ++i) radio.add_static_node(sim::node_id(i), Vec2{0.1, 0.05 * i}, i);
+    radio.add_static_node(sim::node_id(4), Vec2{0, 0}, 4);
+    for (std::uint32_t i = 0; i < 4; ++i) {
+      radio.unicast(sim::node_id(i), sim::node_id(4), beacon(sim::node_id(i)));
+      if (static_cast<int>(i) == marker_after) sim.at(at, [&order] { order.push_back(-1); });
+    }
+    sim.run();
+    return sim.events_run();
+  };
+  std::vector<int> order;
+  sim::Time arrival{};
+  CHECK(run(-1, sim::Time{}, order, arrival) == 1);
+  CHECK(order == std::vector<int>{0, 1, 2, 3});
+  order.clear();
+  sim::Time unused{};
+  CHECK(run(1, arrival, order, unused) == 3);  // frames 0-1, the marker, frames 2-3
+  CHECK(order == std::vector<int>{0, 1, -1, 2, 3});
+}
+
 TEST_CASE("energy equals the first-order radio model, continuous at d0", "[net]") {
   net::EnergyParams e;
   const double d0 = e.crossover_m();
