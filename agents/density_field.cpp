@@ -1,5 +1,6 @@
 #include "agents/density_field.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace masnet::agents {
@@ -30,6 +31,32 @@ double AnalyticField::evaluate(const Vec2& s, double t_s, bool count) {
 
 void AnalyticField::row_values(double y, const double* xs, std::size_t n, double t_s, double* out) {
   if (def_.kind == FieldKind::acoustic || def_.kind == FieldKind::gaussian) move_to(t_s);
+  switch (def_.kind) {
+    case FieldKind::uniform:
+    case FieldKind::diffusion:
+      std::fill(out, out + n, def_.uniform_value);
+      return;
+    case FieldKind::acoustic:
+      if (def_.alpha == 2.0) {  // the default, the paper's: point_value's arithmetic, row-wise
+        const double d2_min = def_.min_distance * def_.min_distance;
+        std::fill(out, out + n, 0.0);
+        for (std::size_t t = 0; t < def_.targets.size(); ++t) {
+          const double cx = centres_[t].x(), dy = centres_[t].y() - y, dy2 = dy * dy;
+          for (std::size_t k = 0; k < n; ++k) {
+            const double dx = cx - xs[k];
+            double d2 = dx * dx + dy2;
+            if (d2 < d2_min) {
+              d2 = d2_min;
+              ++clamped_;
+            }
+            out[k] += def_.amplitude / d2;
+          }
+        }
+        return;
+      }
+      break;
+    default: break;
+  }
   for (std::size_t k = 0; k < n; ++k) out[k] = point_value(Vec2{xs[k], y}, true);
 }
 

@@ -382,8 +382,7 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
     if (def_.sensor_noise_sigma <= 0.0 && uniform_sensor_area_ > 0.0 && !diffusion_) {
       row_buffer_.resize(last - first);
       field_.row_values(y, &sensor_lines_.x(first), last - first, sim::to_seconds(simulator_.now()), row_buffer_.data());
-      for (std::uint32_t k = first; k < last; ++k)
-        accumulator.add(Vec2{sensor_lines_.x(k), y}, row_buffer_[k - first], uniform_sensor_area_);
+      accumulator.add_row(y, &sensor_lines_.x(first), row_buffer_.data(), last - first, uniform_sensor_area_);
       readings_taken_ += last - first;
       inside += last - first;
       return;

@@ -1,6 +1,7 @@
 #pragma once
 // The Lloyd control target (paper §III-B, SPEC §5.2): the centroid of the readings inside a
 // cell, each weighted by SK(ρ)·A(s), over positive readings only.
+#include <cstddef>
 #include <cstdint>
 
 #include "net/vec2.hpp"
@@ -23,6 +24,17 @@ class CentroidAccumulator {
     moment_y_ += w * at.y();
     ++weighted_;
   }
+  /// Adds the n sensors (xs[k], y) with readings rhos[k], each standing for `area`: the same
+  /// arithmetic, in the same order, as n calls of add(), with the scaling chosen once per row.
+  void add_row(double y, const double* xs, const double* rhos, std::size_t n, double area) {
+    switch (scaling_.kind) {
+      case ScalingKind::identity:
+        add_row_scaled(y, xs, rhos, n, area, [](double rho) { return rho > 0.0 ? rho : 0.0; });
+        return;
+      default:
+        add_row_scaled(y, xs, rhos, n, area, [this](double rho) { return scaling_(rho); });
+    }
+  }
   /// True when at least one positive reading was added.
   bool has_mass() const { return weighted_ > 0 && mass_ > 0.0; }
   /// Σ w·s / Σ w; precondition has_mass().
@@ -31,6 +43,24 @@ class CentroidAccumulator {
   std::uint32_t weighted_count() const { return weighted_; }
 
  private:
+  template <class Scale>
+  void add_row_scaled(double y, const double* xs, const double* rhos, std::size_t n, double area, Scale scale) {
+    double mass = mass_, mx = moment_x_, my = moment_y_;
+    std::uint32_t weighted = weighted_;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double w = scale(rhos[k]) * area;
+      if (!(w > 0.0)) continue;
+      mass += w;
+      mx += w * xs[k];
+      my += w * y;
+      ++weighted;
+    }
+    mass_ = mass;
+    moment_x_ = mx;
+    moment_y_ = my;
+    weighted_ = weighted;
+  }
+
   DensityScaling scaling_;
   double mass_ = 0.0, moment_x_ = 0.0, moment_y_ = 0.0;
   std::uint32_t weighted_ = 0;

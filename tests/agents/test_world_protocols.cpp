@@ -124,7 +124,12 @@ TEST_CASE("the same world and seed give the same fingerprint and another seed a 
 TEST_CASE("the oracle's scanline pass selects exactly the sensors an exact point test selects",
           "[agents]") {
   // Robots on a grid put cell edges exactly through sensor rows and columns; random robots give
-  // general cells. Every cell's sensor set must equal the brute-force set of contains().
+  // general cells. Every cell's sensor set must equal the brute-force set of contains(), and its
+  // centroid the one sensor-by-sensor accumulation gives, to the bit: the row-wise field and
+  // accumulator promise the same arithmetic in the same order. Layouts 2-5 use the acoustic
+  // field with targets on sensors (clamped readings) and scalings other than the identity.
+  const protocols::ScalingKind scalings[] = {protocols::ScalingKind::identity, protocols::ScalingKind::saturate,
+                                             protocols::ScalingKind::power, protocols::ScalingKind::log1p};
   for (int layout = 0; layout < 6; ++layout) {
     WorldDef def;
     def.seed = 5;
@@ -139,24 +144,40 @@ TEST_CASE("the oracle's scanline pass selects exactly the sensors an exact point
     } else {
       for (int r = 0; r < 25; ++r) def.robots.push_back(Vec2{rng.uniform01(), rng.uniform01()});
     }
-    def.field.kind = agents::FieldKind::uniform;
+    protocols::DensityScaling scaling;
+    if (layout < 2) {
+      def.field.kind = agents::FieldKind::uniform;
+    } else {
+      def.field.kind = agents::FieldKind::acoustic;
+      def.field.min_distance = 0.5 / side;
+      def.field.targets = {agents::PathDef{def.sensors[410].position, Vec2{0, 0}, {}, 0, false},
+                           agents::PathDef{Vec2{0.71, 0.33}, Vec2{0, 0}, {}, 0, false}};
+      scaling.kind = scalings[layout - 2];
+      scaling.gamma = 0.5;
+    }
     sim::Simulator simulator;
     World world(simulator, def);
+    agents::AnalyticField field(def.field);
     for (std::size_t r = 0; r < world.robot_count(); ++r) {
       const protocols::ConvexPolygon cell = world.oracle_cell(r).polygon;
-      protocols::CentroidAccumulator fast{protocols::DensityScaling{}}, brute{protocols::DensityScaling{}};
+      protocols::CentroidAccumulator fast{scaling}, brute{scaling};
       const std::uint32_t selected = world.read_sensors_in(cell, fast);
       std::uint32_t expected = 0;
       for (const agents::SensorDef& s : def.sensors)
         if (protocols::contains(cell, s.position)) {
-          brute.add(s.position, 1.0, s.area);
+          brute.add(s.position, field.value(s.position, 0.0), s.area);
           ++expected;
         }
       INFO("layout " << layout << " robot " << r);
       CHECK(selected == expected);
+      CHECK(fast.weighted_count() == brute.weighted_count());
+      CHECK(fast.mass() == brute.mass());
       REQUIRE(fast.has_mass() == brute.has_mass());
-      if (fast.has_mass()) CHECK((fast.centroid() - brute.centroid()).norm() < 1e-12);
+      if (fast.has_mass()) CHECK(fast.centroid() == brute.centroid());
     }
+    CHECK(world.clamped_readings() == field.clamped_readings());
+    // Sensor 410 sits on the first target; (0.7125, 0.3375) is 0.0079 < d_min from the second.
+    if (layout >= 2) CHECK(field.clamped_readings() == 2);
   }
 }
 
