@@ -351,9 +351,6 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
       destination == sim::kNoNode ? kNoHotIndex : nodes_[sim::index(destination)].hot;
   const std::uint32_t static_count = static_cast<std::uint32_t>(static_ids_.size());
   const bool is_broadcast = destination == sim::kNoNode;
-  // Booked in bulk: frames no static node needs to see one by one — overheard unicasts, and
-  // broadcasts of a type no sensor listens to when nothing can be lost — unless a battery makes
-  // every reception a question of survival.
   // Booked in bulk whenever no reception can fail (no battery, no loss): energy and counters
   // go in as runs; the nodes that want the frame (interest) are collected as receivers.
   const bool bulk = use_lines_ && !battery && (!is_broadcast || params_.loss <= 0);
