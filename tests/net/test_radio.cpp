@@ -46,6 +46,20 @@ struct LinearMotion : net::MobilePositions {
   }
 };
 
+// A simulator, a radio, a recorder listening to it and straight-line motion for its mobile nodes.
+struct Rig {
+  sim::Simulator sim;
+  net::Radio radio;
+  Recorder rec;
+  LinearMotion motion;
+  Rig(const net::RadioParams& params, std::uint64_t seed) : radio(sim, params, seed) {
+    rec.sim = &sim;
+    motion.sim = &sim;
+    radio.set_listener(&rec);
+    radio.set_mobile_positions(&motion);
+  }
+};
+
 net::Payload beacon(NodeId from) { return net::Beacon{from, Vec2{0, 0}}; }
 
 }  // namespace
@@ -53,16 +67,10 @@ net::Payload beacon(NodeId from) { return net::Beacon{from, Vec2{0, 0}}; }
 TEST_CASE("broadcast deliveries equal a brute-force range check, static and moving nodes",
           "[net]") {
   for (int layout = 0; layout < 20; ++layout) {
-    sim::Simulator sim;
     net::RadioParams params;
     params.max_range = 0.4;
-    net::Radio radio(sim, params, 1);
-    Recorder rec;
-    rec.sim = &sim;
-    LinearMotion motion;
-    motion.sim = &sim;
-    radio.set_listener(&rec);
-    radio.set_mobile_positions(&motion);
+    Rig rig(params, 1);
+    auto& [sim, radio, rec, motion] = rig;
     sim::RandomStream rng(static_cast<std::uint64_t>(layout));
     const int n_static = 50 + 20 * layout, n_mobile = layout % 2 == 0 ? 10 : 60;  // both paths
     for (int i = 0; i < n_static; ++i)
@@ -100,13 +108,10 @@ TEST_CASE("broadcast deliveries equal a brute-force range check, static and movi
 
 TEST_CASE("nothing is delivered beyond the range and the addressee of a unicast gets it",
           "[net]") {
-  sim::Simulator sim;
   net::RadioParams params;
   params.max_range = 0.5;
-  net::Radio radio(sim, params, 1);
-  Recorder rec;
-  rec.sim = &sim;
-  radio.set_listener(&rec);
+  Rig rig(params, 1);
+  auto& [sim, radio, rec, motion] = rig;
   radio.add_static_node(sim::node_id(0), Vec2{0, 0}, 0);
   radio.add_static_node(sim::node_id(1), Vec2{0.3, 0}, 1);
   radio.add_static_node(sim::node_id(2), Vec2{0.3000001, 0}, 2);
@@ -127,14 +132,11 @@ TEST_CASE("nothing is delivered beyond the range and the addressee of a unicast 
 
 TEST_CASE("the loss rate lies inside the binomial 99.9% interval", "[net]") {
   for (double p : {0.1, 0.3, 0.5}) {
-    sim::Simulator sim;
     net::RadioParams params;
     params.loss = p;
     params.level = net::RadioLevel::ideal;
-    net::Radio radio(sim, params, 77);
-    Recorder rec;
-    rec.sim = &sim;
-    radio.set_listener(&rec);
+    Rig rig(params, 77);
+    auto& [sim, radio, rec, motion] = rig;
     const int n = 101;
     for (int i = 0; i < n; ++i)
       radio.add_static_node(sim::node_id(i), Vec2{0.001 * i, 0}, i);
@@ -156,14 +158,11 @@ TEST_CASE("the loss rate lies inside the binomial 99.9% interval", "[net]") {
 
 TEST_CASE("delay is latency plus airtime, and a transmitter sends one frame at a time",
           "[net]") {
-  sim::Simulator sim;
   net::RadioParams params;
   params.latency_s = 1e-4;
   params.bitrate_bps = 1e5;
-  net::Radio radio(sim, params, 1);
-  Recorder rec;
-  rec.sim = &sim;
-  radio.set_listener(&rec);
+  Rig rig(params, 1);
+  auto& [sim, radio, rec, motion] = rig;
   radio.add_static_node(sim::node_id(0), Vec2{0, 0}, 0);
   radio.add_static_node(sim::node_id(1), Vec2{0.1, 0}, 1);
   radio.broadcast(sim::node_id(0), 0.2, beacon(sim::node_id(0)));
@@ -249,15 +248,12 @@ TEST_CASE("energy equals the first-order radio model, continuous at d0", "[net]"
 }
 
 TEST_CASE("a node whose battery empties stops sending and receiving", "[net]") {
-  sim::Simulator sim;
   net::RadioParams params;
   const double bits = 8.0 * (params.sizes.header_bytes + params.sizes.id_bytes + params.sizes.position_bytes);
   const double tx = net::tx_energy_j(params.energy, bits, 0.1 * params.meters_per_unit);
   params.energy.battery_j = 2.5 * tx;  // enough for two frames, not three
-  net::Radio radio(sim, params, 1);
-  Recorder rec;
-  rec.sim = &sim;
-  radio.set_listener(&rec);
+  Rig rig(params, 1);
+  auto& [sim, radio, rec, motion] = rig;
   radio.add_static_node(sim::node_id(0), Vec2{0, 0}, 0);
   radio.add_static_node(sim::node_id(1), Vec2{0.1, 0}, 1);
   CHECK(radio.broadcast(sim::node_id(0), 0.1, beacon(sim::node_id(0))));
@@ -278,14 +274,11 @@ TEST_CASE("a node whose battery empties stops sending and receiving", "[net]") {
 }
 
 TEST_CASE("idle power empties a battery at the predicted time", "[net]") {
-  sim::Simulator sim;
   net::RadioParams params;
   params.energy.idle_power_w = 0.5;
   params.energy.battery_j = 2.0;
-  net::Radio radio(sim, params, 1);
-  Recorder rec;
-  rec.sim = &sim;
-  radio.set_listener(&rec);
+  Rig rig(params, 1);
+  auto& [sim, radio, rec, motion] = rig;
   radio.add_static_node(sim::node_id(0), Vec2{0, 0}, 0);
   sim.run_until(sim::time_at(10.0));
   REQUIRE(rec.emptied.size() == 1);
@@ -296,13 +289,10 @@ TEST_CASE("idle power empties a battery at the predicted time", "[net]") {
 TEST_CASE("loss draws of one link do not depend on other nodes", "[net]") {
   // Adding a node elsewhere must not change which receptions of an existing link are lost.
   auto lost_pattern = [](int extra_nodes) {
-    sim::Simulator sim;
     net::RadioParams params;
     params.loss = 0.5;
-    net::Radio radio(sim, params, 5);
-    Recorder rec;
-    rec.sim = &sim;
-    radio.set_listener(&rec);
+    Rig rig(params, 5);
+    auto& [sim, radio, rec, motion] = rig;
     radio.add_static_node(sim::node_id(0), Vec2{0, 0}, 0);
     radio.add_static_node(sim::node_id(1), Vec2{0.05, 0}, 1);
     for (int i = 0; i < extra_nodes; ++i)
@@ -318,14 +308,11 @@ TEST_CASE("loss draws of one link do not depend on other nodes", "[net]") {
 }
 
 TEST_CASE("receptions bring forward the moment an idle drain empties a battery", "[net]") {
-  sim::Simulator sim;
   net::RadioParams params;
   params.energy.idle_power_w = 0.5;
   params.energy.battery_j = 2.0;
-  net::Radio radio(sim, params, 1);
-  Recorder rec;
-  rec.sim = &sim;
-  radio.set_listener(&rec);
+  Rig rig(params, 1);
+  auto& [sim, radio, rec, motion] = rig;
   radio.add_static_node(sim::node_id(0), Vec2{0, 0}, 0);
   radio.add_static_node(sim::node_id(1), Vec2{0.01, 0}, 1);
   sim.at(sim::time_at(1.0), [&radio] {
@@ -361,16 +348,10 @@ TEST_CASE("frames booked in bulk on a sensor grid give every node exactly the br
   // A 30 × 30 grid (indexed as lines and booked run by run) plus moving robots; random
   // broadcasts of a type the sensors ignore (bulk), of a type they listen to (one by one), and
   // unicasts with their overhearers (bulk).
-  sim::Simulator sim;
   net::RadioParams params;
   params.max_range = 0.5;
-  net::Radio radio(sim, params, 3);
-  Recorder rec;
-  rec.sim = &sim;
-  LinearMotion motion;
-  motion.sim = &sim;
-  radio.set_listener(&rec);
-  radio.set_mobile_positions(&motion);
+  Rig rig(params, 3);
+  auto& [sim, radio, rec, motion] = rig;
   const int side = 30, robots = 40, sensors = side * side;
   const std::uint32_t sensor_interest = 1u << static_cast<unsigned>(net::MessageType::position);
   for (int j = 0; j < side; ++j)
