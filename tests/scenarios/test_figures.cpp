@@ -18,6 +18,7 @@
 #include "scenarios/figures.hpp"
 #include "scenarios/plot.hpp"
 #include "scenarios/report.hpp"
+#include "text_files.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -25,18 +26,8 @@ using namespace masnet::scenarios;
 
 namespace {
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-std::size_t count(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos;
-       at = text.find(what, at + what.size()))
-    ++n;
-  return n;
-}
+using masnet::test::count;
+using masnet::test::slurp;
 
 std::string last_line(const std::string& text) {
   std::string s = text;

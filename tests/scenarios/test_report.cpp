@@ -13,24 +13,15 @@
 
 #include "scenarios/figures.hpp"
 #include "scenarios/report.hpp"
+#include "text_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace masnet::scenarios;
 
 namespace {
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-std::size_t count(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos;
-       at = text.find(what, at + what.size()))
-    ++n;
-  return n;
-}
+using masnet::test::count;
+using masnet::test::slurp;
 
 // A short acoustic run (1 s, snapshots at 0.5 and 1 s) for the tests of this file, removed at
 // exit.

@@ -19,6 +19,7 @@
 #include "scenarios/sweep.hpp"
 #include "scenarios/sweep_command.hpp"
 #include "scenarios/sweep_report.hpp"
+#include "text_files.hpp"
 
 using namespace masnet::scenarios;
 namespace fs = std::filesystem;
@@ -77,12 +78,7 @@ fs::path write_file(const fs::path& path, const std::string& text) {
   return path;
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using masnet::test::slurp;
 
 using Row = std::map<std::string, std::string>;
 
