@@ -112,7 +112,7 @@ class World::SensorContext final : public protocols::SensorHost {
   NodeId id() const override { return world_.sensor_node(sensor_); }
   // From the radio's record of the node, which the reply's transmission reads anyway.
   Vec2 position() const override { return world_.radio_.position(id()); }
-  double reading() override { return world_.sensor_reading(sensor_); }
+  double reading() override { return world_.sensor_reading(sensor_, position()); }
   std::uint32_t unicast(NodeId to, net::Payload payload) override {
     const std::uint32_t bytes = net::size_bytes(payload, world_.radio_.params().sizes);
     return world_.radio_.unicast(id(), to, std::move(payload)) ? bytes : 0;
@@ -274,9 +274,9 @@ double World::spray_rate(std::size_t robot) const {
   return -magnitude;
 }
 
-double World::sensor_reading(std::size_t sensor) {
+double World::sensor_reading(std::size_t sensor, const Vec2& position) {
   ++readings_taken_;
-  double value = field_value(def_.sensors[sensor].position);
+  double value = field_value(position);
   if (def_.sensor_noise_sigma > 0.0) {
     // Box-Muller from two keyed draws: the n-th reading of a sensor has fixed noise.
     const std::uint64_t n = sensor_read_counts_[sensor]++;
@@ -334,7 +334,7 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
   const std::size_t first_sensor = robots_.size();
   auto take = [&](NodeId id, const Vec2& s) {
     const std::size_t sensor = sim::index(id) - first_sensor;
-    accumulator.add(s, sensor_reading(sensor), def_.sensors[sensor].area);
+    accumulator.add(s, sensor_reading(sensor, s), def_.sensors[sensor].area);
     ++inside;
   };
   if (sensor_lines_.empty()) {

@@ -129,7 +129,8 @@ class World final : public net::RadioListener, public net::MobilePositions {
   class RobotAgent;
   class SensorContext;
 
-  double sensor_reading(std::size_t sensor);
+  /// The reading of `sensor`, which stands at `position` (passed: the caller has it at hand).
+  double sensor_reading(std::size_t sensor, const Vec2& position);
   void sensor_timer(std::size_t sensor, std::uint32_t kind);
   void send_beacon(NodeId node);
   void pde_step();

@@ -91,15 +91,11 @@ void Radio::prepare_index() {
     }
   }
   // Per-type tx counters are by node id with a stride of the node count: re-lay them out.
-  std::vector<std::uint64_t> tx_count(n_nodes * types, 0), tx_bytes(n_nodes * types, 0);
-  const std::size_t old_nodes = tx_count_.size() / types;
+  std::vector<TxCounter> tx(n_nodes * types);
+  const std::size_t old_nodes = tx_.size() / types;
   for (std::size_t t = 0; t < types; ++t)
-    for (std::size_t n = 0; n < old_nodes; ++n) {
-      tx_count[t * n_nodes + n] = tx_count_[t * old_nodes + n];
-      tx_bytes[t * n_nodes + n] = tx_bytes_[t * old_nodes + n];
-    }
-  tx_count_ = std::move(tx_count);
-  tx_bytes_ = std::move(tx_bytes);
+    for (std::size_t n = 0; n < old_nodes; ++n) tx[t * n_nodes + n] = tx_[t * old_nodes + n];
+  tx_ = std::move(tx);
   // Sensor grids lie on rows: index them as lines, so frames can be booked run by run.
   use_lines_ = line_index_.build(static_positions_, static_ids_);
   if (!use_lines_) static_grid_.build(static_positions_, static_ids_);
@@ -161,10 +157,10 @@ TypeCounters Radio::counters(NodeId node, MessageType type) const {
   materialize();
   const auto t = static_cast<std::size_t>(type);
   TypeCounters c;
-  const std::size_t stride = tx_count_.size() / kMessageTypeCount;  // nodes at the last indexing
+  const std::size_t stride = tx_.size() / kMessageTypeCount;  // nodes at the last indexing
   if (sim::index(node) < stride) {
-    c.tx_count = tx_count_[t * stride + sim::index(node)];
-    c.tx_bytes = tx_bytes_[t * stride + sim::index(node)];
+    c.tx_count = tx_[t * stride + sim::index(node)].count;
+    c.tx_bytes = tx_[t * stride + sim::index(node)].bytes;
   }
   const std::uint32_t hot = nodes_[sim::index(node)].hot;
   if (hot != kNoHotIndex) {
@@ -289,8 +285,9 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   total_tx_j_ += tx_j;
   if (battery && params_.energy.idle_power_w > 0) schedule_depletion(source);
   const auto type_index = static_cast<std::size_t>(type);
-  ++tx_count_[type_index * nodes_.size() + sim::index(source)];
-  tx_bytes_[type_index * nodes_.size() + sim::index(source)] += bytes;
+  TxCounter& sent = tx_[type_index * nodes_.size() + sim::index(source)];
+  ++sent.count;
+  sent.bytes += bytes;
   ++totals_[type_index].tx_count;
   totals_[type_index].tx_bytes += bytes;
   const std::uint64_t frame_number = src.frames_sent++;

@@ -195,7 +195,10 @@ class Radio {
   const MobilePositions* mobile_ = nullptr;
 
   std::vector<Node> nodes_;
-  std::vector<std::uint64_t> tx_count_, tx_bytes_;  // [type][node]
+  struct TxCounter {
+    std::uint64_t count = 0, bytes = 0;  // side by side: a transmission touches one cache line
+  };
+  std::vector<TxCounter> tx_;  // [type][node]
   std::array<TypeCounters, kMessageTypeCount> totals_{};
   double total_tx_j_ = 0.0;
   std::uint64_t total_heard_bytes_ = 0;
