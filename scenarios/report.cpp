@@ -302,48 +302,6 @@ constexpr const char* kReportScript = R"(
 })();
 )";
 
-// The library file and a line about it, or nothing and the reason.
-struct ChartLibrary {
-  std::string code;
-  std::string about;
-};
-
-std::optional<ChartLibrary> load_chartjs(const ReportOptions& options, std::string& why_not) {
-  const std::optional<fs::path> path = find_chartjs(options);
-  if (!path) {
-    why_not =
-        "Chart.js was not found (looked for /usr/share/javascript/chart.js/chart.umd.js, "
-        "chart.min.js and "
-        "chart.js; $MASNET_CHARTJS overrides). Install Debian's libjs-chart.js (scripts/setup "
-        "does) and run "
-        "<code>masnet render</code> on this directory again.";
-    return std::nullopt;
-  }
-  std::string code;
-  try {
-    code = read_file(*path);
-  } catch (const std::exception& e) {
-    why_not = escape_html(e.what());
-    return std::nullopt;
-  }
-  // A plain <script> needs the UMD build, which defines the global `Chart`.
-  const std::string head = code.substr(0, 4096);
-  if (head.find("typeof exports") == std::string::npos &&
-      head.find("define.amd") == std::string::npos &&
-      head.find("globalThis") == std::string::npos) {
-    why_not = "'" + escape_html(path->string()) +
-              "' is not a UMD build of Chart.js (an ES module cannot be inlined "
-              "with its imports).";
-    return std::nullopt;
-  }
-  std::string version;
-  if (const std::size_t at = head.find("Chart.js v"); at != std::string::npos)
-    version = head.substr(at + 10, head.find_first_of(" \n\r*", at + 10) - at - 10);
-  return ChartLibrary{escape_script(std::move(code)),
-                      fmt::format("Interactive charts: Chart.js {} (MIT licence), inlined from {}.",
-                                  escape_html(version.empty() ? "(version unknown)" : version),
-                                  escape_html(path->string()))};
-}
 
 std::string messages_table(const json& summary) {
   if (!summary.contains("messages")) return "<p>No message statistics.</p>\n";
@@ -416,6 +374,43 @@ std::optional<fs::path> find_chartjs(const ReportOptions& options) {
     if (fs::is_regular_file(p)) return p;
   }
   return std::nullopt;
+}
+
+std::optional<ChartLibrary> load_chartjs(const ReportOptions& options, std::string& why_not) {
+  const std::optional<fs::path> path = find_chartjs(options);
+  if (!path) {
+    why_not =
+        "Chart.js was not found (looked for /usr/share/javascript/chart.js/chart.umd.js, "
+        "chart.min.js and "
+        "chart.js; $MASNET_CHARTJS overrides). Install Debian's libjs-chart.js (scripts/setup "
+        "does) and run "
+        "<code>masnet render</code> on this directory again.";
+    return std::nullopt;
+  }
+  std::string code;
+  try {
+    code = read_file(*path);
+  } catch (const std::exception& e) {
+    why_not = escape_html(e.what());
+    return std::nullopt;
+  }
+  // A plain <script> needs the UMD build, which defines the global `Chart`.
+  const std::string head = code.substr(0, 4096);
+  if (head.find("typeof exports") == std::string::npos &&
+      head.find("define.amd") == std::string::npos &&
+      head.find("globalThis") == std::string::npos) {
+    why_not = "'" + escape_html(path->string()) +
+              "' is not a UMD build of Chart.js (an ES module cannot be inlined "
+              "with its imports).";
+    return std::nullopt;
+  }
+  std::string version;
+  if (const std::size_t at = head.find("Chart.js v"); at != std::string::npos)
+    version = head.substr(at + 10, head.find_first_of(" \n\r*", at + 10) - at - 10);
+  return ChartLibrary{escape_script(std::move(code)),
+                      fmt::format("Interactive charts: Chart.js {} (MIT licence), inlined from {}.",
+                                  escape_html(version.empty() ? "(version unknown)" : version),
+                                  escape_html(path->string()))};
 }
 
 fs::path write_report(const RunData& run, const std::vector<FigureInfo>& figures,

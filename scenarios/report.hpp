@@ -24,6 +24,15 @@ struct ReportOptions {
 /// The Chart.js file the report would inline, if any (see ReportOptions::chartjs).
 std::optional<std::filesystem::path> find_chartjs(const ReportOptions& options);
 
+/// Chart.js ready to inline in a <script> ("</script" escaped) and a line (HTML) on what it is.
+struct ChartLibrary {
+  std::string code;
+  std::string about;
+};
+/// Loads the file find_chartjs names if it is a UMD build (what a plain <script> can run);
+/// otherwise nothing, with the reason (HTML) in `why_not`.
+std::optional<ChartLibrary> load_chartjs(const ReportOptions& options, std::string& why_not);
+
 /// Text made safe for HTML content and attribute values (& < > ").
 std::string escape_html(std::string_view text);
 

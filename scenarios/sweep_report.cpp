@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <ctime>
-#include <fstream>
 #include <optional>
-#include <sstream>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -81,11 +79,11 @@ json finite(double v) {
   return std::isfinite(v) ? json(v) : json(nullptr);
 }
 
+// The run report's Chart.js, with the advice that fits a sweep when it is missing.
 std::optional<std::string> chart_library(const fs::path& requested, std::string& about) {
   ReportOptions options;
   options.chartjs = requested;
-  const std::optional<fs::path> path = find_chartjs(options);
-  if (!path) {
+  if (!find_chartjs(options)) {
     about =
         "Charts need Chart.js, which was not found (looked for $MASNET_CHARTJS, then "
         "/usr/share/javascript/chart.js/chart.umd.js, chart.min.js, chart.js). Install Debian's "
@@ -93,24 +91,14 @@ std::optional<std::string> chart_library(const fs::path& requested, std::string&
         "finished runs are skipped and this page is redrawn with charts.";
     return std::nullopt;
   }
-  std::ifstream in(*path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  std::string code = s.str();
-  const std::string head = code.substr(0, 4096);
-  if (!in || (head.find("typeof exports") == std::string::npos &&
-              head.find("define.amd") == std::string::npos)) {
-    about = "'" + escape_html(path->string()) +
-            "' is not a readable UMD build of Chart.js; the page has tables only.";
+  std::string why_not;
+  std::optional<ChartLibrary> library = load_chartjs(options, why_not);
+  if (!library) {
+    about = why_not + " The page has tables only.";
     return std::nullopt;
   }
-  // Inside <script>, "</script" would end the element early.
-  for (std::size_t at = code.find("</script"); at != std::string::npos;
-       at = code.find("</script", at))
-    code.replace(at, 2, "<\\/");
-  about =
-      "Charts drawn by Chart.js (MIT licence), inlined from " + escape_html(path->string()) + ".";
-  return code;
+  about = library->about;
+  return std::move(library->code);
 }
 
 struct Configuration {

@@ -18,6 +18,7 @@
 #include "scenarios/figures.hpp"
 #include "scenarios/plot.hpp"
 #include "scenarios/report.hpp"
+#include "short_run.hpp"
 #include "text_files.hpp"
 
 namespace fs = std::filesystem;
@@ -37,33 +38,10 @@ std::string last_line(const std::string& text) {
   return nl == std::string::npos ? s : s.substr(nl + 1);
 }
 
-// A short run of the paper's acoustic scenario (1 s, snapshots at 0.5 and 1 s), made once
-// for the tests of this file and removed at exit.
-struct ShortRun {
-  fs::path base, dir;
-  int status = -1;
-  std::string output;
-  ShortRun() {
-    base = fs::temp_directory_path() / fmt::format("masnet-test-figures-{}", ::getpid());
-    fs::remove_all(base);
-    fs::create_directories(base);
-    dir = base / "run";
-    const std::string command = fmt::format(
-        "'{}/scenarios/masnet' run '{}/scenarios/paper/acoustic_tracking.yaml' --out '{}' --set "
-        "duration=1 "
-        "--set 'output.snapshots=[0.5,1]' > '{}' 2>&1",
-        MASNET_BINARY_DIR, MASNET_SOURCE_DIR, dir.string(), (base / "output.txt").string());
-    status = std::system(command.c_str());
-    output = slurp(base / "output.txt");
-  }
-  ~ShortRun() {
-    std::error_code ec;
-    fs::remove_all(base, ec);
-  }
-};
+using masnet::test::ShortRun;
 
 const ShortRun& short_run() {
-  static const ShortRun run;
+  static const ShortRun run("figures");
   return run;
 }
 

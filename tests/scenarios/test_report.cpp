@@ -13,6 +13,7 @@
 
 #include "scenarios/figures.hpp"
 #include "scenarios/report.hpp"
+#include "short_run.hpp"
 #include "text_files.hpp"
 
 namespace fs = std::filesystem;
@@ -23,31 +24,10 @@ namespace {
 using masnet::test::count;
 using masnet::test::slurp;
 
-// A short acoustic run (1 s, snapshots at 0.5 and 1 s) for the tests of this file, removed at
-// exit.
-struct ShortRun {
-  fs::path base, dir;
-  int status = -1;
-  ShortRun() {
-    base = fs::temp_directory_path() / fmt::format("masnet-test-report-{}", ::getpid());
-    fs::remove_all(base);
-    fs::create_directories(base);
-    dir = base / "run";
-    const std::string command = fmt::format(
-        "'{}/scenarios/masnet' run '{}/scenarios/paper/acoustic_tracking.yaml' --out '{}' --quiet "
-        "--set duration=1 "
-        "--set 'output.snapshots=[0.5,1]'",
-        MASNET_BINARY_DIR, MASNET_SOURCE_DIR, dir.string());
-    status = std::system(command.c_str());
-  }
-  ~ShortRun() {
-    std::error_code ec;
-    fs::remove_all(base, ec);
-  }
-};
+using masnet::test::ShortRun;
 
 const ShortRun& short_run() {
-  static const ShortRun run;
+  static const ShortRun run("report");
   return run;
 }
 
