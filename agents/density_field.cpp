@@ -38,20 +38,28 @@ void AnalyticField::row_values(double y, const double* xs, std::size_t n, double
       return;
     case FieldKind::acoustic:
       if (def_.alpha == 2.0) {  // the default, the paper's: point_value's arithmetic, row-wise
-        const double d2_min = def_.min_distance * def_.min_distance;
+        const double d2_min = def_.min_distance * def_.min_distance, amplitude = def_.amplitude;
         std::fill(out, out + n, 0.0);
+        std::uint64_t clamped = 0;
         for (std::size_t t = 0; t < def_.targets.size(); ++t) {
           const double cx = centres_[t].x(), dy = centres_[t].y() - y, dy2 = dy * dy;
-          for (std::size_t k = 0; k < n; ++k) {
-            const double dx = cx - xs[k];
-            double d2 = dx * dx + dy2;
-            if (d2 < d2_min) {
-              d2 = d2_min;
-              ++clamped_;
+          const double* __restrict row_xs = xs;
+          double* __restrict row_out = out;
+          if (dy2 >= d2_min) {  // d² >= dy² everywhere on the row: nothing clamps, and this vectorises
+            for (std::size_t k = 0; k < n; ++k) {
+              const double dx = cx - row_xs[k];
+              row_out[k] += amplitude / (dx * dx + dy2);
             }
-            out[k] += def_.amplitude / d2;
+            continue;
+          }
+          for (std::size_t k = 0; k < n; ++k) {
+            const double dx = cx - row_xs[k];
+            const double d2 = dx * dx + dy2;
+            clamped += d2 < d2_min ? 1u : 0u;
+            row_out[k] += amplitude / (d2 < d2_min ? d2_min : d2);
           }
         }
+        clamped_ += clamped;
         return;
       }
       break;

@@ -4,6 +4,7 @@
 // advanced by the world. See docs/field-models.md.
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "agents/diffusion_field.hpp"
@@ -56,6 +57,11 @@ class AnalyticField {
   /// ρ at the n points (xs[k], y) at time t into out[k] — the same arithmetic as value(), with
   /// the per-call work done once for the row (the oracle's scanline pass).
   void row_values(double y, const double* xs, std::size_t n, double t_s, double* out);
+
+  /// The value everywhere when the field is uniform (lets a row of readings skip the field).
+  std::optional<double> uniform_value() const {
+    return def_.kind == FieldKind::uniform ? std::optional<double>(def_.uniform_value) : std::nullopt;
+  }
 
   std::uint64_t clamped_readings() const { return clamped_; }
   const FieldDef& def() const { return def_; }

@@ -337,58 +337,64 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
     accumulator.add(s, sensor_reading(sensor, s), def_.sensors[sensor].area);
     ++inside;
   };
-  if (sensor_lines_.empty()) {
+  if (!sensor_lines_.empty()) slicer_.reset(cell);
+  if (sensor_lines_.empty() || !slicer_.valid()) {  // no rows, or not a proper polygon
     sensor_grid_.for_each_within(0.5 * (lo + hi), 0.5 * (hi - lo).norm(), [&](NodeId id, const Vec2& s, double) {
       if (protocols::contains(cell, s)) take(id, s);
     });
     return inside;
   }
-  // Sensor rows: the cell meets each row in one interval. Its ends come from the edges in
-  // floating point; only sensors within a hair of an end need the exact test, so the per-sensor
-  // work is the accumulation itself.
-  const std::vector<Vec2>& v = cell.vertices;
-  const double tol = 1e-12 * (std::fabs(lo.x()) + std::fabs(hi.x()) + std::fabs(lo.y()) + std::fabs(hi.y())) + 1e-300;
+  // Sensor rows: the cell meets each row in one interval, whose ends the slicer gives within
+  // its margin; only sensors that close to an end need the exact test, so the per-sensor work
+  // is the accumulation itself. Two passes: first every row's interval, prefetching the
+  // coordinates it will read (on large networks each row is a cache miss: overlapping them is
+  // most of the cost), then the exact ends and the readings.
+  const double margin = slicer_.margin();
+  pending_rows_.clear();
+  sensor_lines_.for_each_line_between(slicer_.y_min(), slicer_.y_max(), [&](std::size_t line, double y, std::uint32_t begin, std::uint32_t end) {
+    const auto [xl, xr] = slicer_.extent(y);
+    if (!(xl <= xr + 2.0 * margin)) return;
+    // The exact search starts one slot before the guess and ends one past the right end.
+    const std::uint32_t a = sensor_lines_.guess_at_or_after(line, xl - margin);
+    const std::uint32_t c = sensor_lines_.guess_at_or_after(line, xr);
+    __builtin_prefetch(&sensor_lines_.x(a > begin ? a - 1 : begin));
+    __builtin_prefetch(&sensor_lines_.x(c < end ? c : end - 1));
+    pending_rows_.push_back(PendingRow{line, y, xl, xr});
+  });
+  const bool row_wise = def_.sensor_noise_sigma <= 0.0 && uniform_sensor_area_ > 0.0 && !diffusion_;
+  const std::optional<double> uniform = field_.uniform_value();
   const std::vector<NodeId>& ids = sensor_lines_.ids();
-  sensor_lines_.for_each_line_between(lo.y() - tol, hi.y() + tol, [&](std::size_t line, double y, std::uint32_t, std::uint32_t) {
-    double xl = std::numeric_limits<double>::infinity(), xr = -xl;
-    for (std::size_t prev = v.size() - 1, i = 0; i < v.size(); prev = i++) {
-      const Vec2& a = v[prev];
-      const Vec2& b = v[i];
-      if ((y < a.y() - tol && y < b.y() - tol) || (y > a.y() + tol && y > b.y() + tol)) continue;
-      if (a.y() == b.y()) {
-        xl = std::min({xl, a.x(), b.x()});
-        xr = std::max({xr, a.x(), b.x()});
-        continue;
-      }
-      const double t = std::clamp((y - a.y()) / (b.y() - a.y()), 0.0, 1.0);
-      const double x = a.x() + t * (b.x() - a.x());
-      xl = std::min(xl, x);
-      xr = std::max(xr, x);
-    }
-    if (!(xl <= xr + tol)) return;
-    const std::uint32_t end = sensor_lines_.first_at_or_after(line, xr + tol + tol);
-    // The cell meets the row in one interval: find its first and last sensors (exactly at the
-    // ends), then everything between is inside (convexity).
-    std::uint32_t first = sensor_lines_.first_at_or_after(line, xl - tol), last = end;
+  for (const PendingRow& row : pending_rows_) {
+    const double y = row.y, xl = row.left, xr = row.right;
+    // Candidates: x in [xl − margin, xr + margin] (and a hair more on the right, tested).
+    std::uint32_t first = sensor_lines_.first_at_or_after(row.line, xl - margin);
+    std::uint32_t last = sensor_lines_.first_at_or_after(row.line, xr + 2.0 * margin);
     auto inside_at = [&](std::uint32_t k) {
       const double x = sensor_lines_.x(k);
-      return (x >= xl + tol && x <= xr - tol) || protocols::contains(cell, Vec2{x, y});
+      return (x >= xl + margin && x <= xr - margin) || protocols::contains(cell, Vec2{x, y});
     };
+    // Exact at the ends; everything between is inside (convexity).
     while (first < last && !inside_at(first)) ++first;
     while (last > first && !inside_at(last - 1)) --last;
-    if (first == last) return;
+    if (first == last) continue;
     // Without noise and with equal areas a reading needs only the position: evaluate the row in
     // one call and stream through its coordinates, never touching per-sensor records.
-    if (def_.sensor_noise_sigma <= 0.0 && uniform_sensor_area_ > 0.0 && !diffusion_) {
+    if (row_wise && uniform) {
+      accumulator.add_row_uniform(y, &sensor_lines_.x(first), last - first, *uniform, uniform_sensor_area_);
+      readings_taken_ += last - first;
+      inside += last - first;
+      continue;
+    }
+    if (row_wise) {
       row_buffer_.resize(last - first);
       field_.row_values(y, &sensor_lines_.x(first), last - first, sim::to_seconds(simulator_.now()), row_buffer_.data());
       accumulator.add_row(y, &sensor_lines_.x(first), row_buffer_.data(), last - first, uniform_sensor_area_);
       readings_taken_ += last - first;
       inside += last - first;
-      return;
+      continue;
     }
     for (std::uint32_t k = first; k < last; ++k) take(ids[k], Vec2{sensor_lines_.x(k), y});
-  });
+  }
   return inside;
 }
 

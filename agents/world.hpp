@@ -149,6 +149,12 @@ class World final : public net::RadioListener, public net::MobilePositions {
   net::SpatialGrid sensor_grid_;
   net::LineIndex sensor_lines_;  // the oracle's scanline pass over sensor rows
   std::vector<double> row_buffer_;
+  protocols::RowSlicer slicer_;
+  struct PendingRow {
+    std::size_t line;
+    double y, left, right;
+  };
+  std::vector<PendingRow> pending_rows_;
   std::unique_ptr<DiffusionField> diffusion_;
   std::vector<double> spray_rate_, neutraliser_used_;  // per robot
   std::uint64_t readings_taken_ = 0;

@@ -38,6 +38,9 @@ class LineIndex {
     for (std::size_t l = lo; l < lines_.size() && lines_[l].y <= y1; ++l)
       visit(l, lines_[l].y, lines_[l].begin, lines_[l].end);
   }
+  /// A guess at first_at_or_after(line, value) that reads no coordinates (exact for evenly
+  /// spaced lines but for rounding): where to prefetch before the exact search.
+  std::uint32_t guess_at_or_after(std::size_t line, double value) const { return estimate(lines_[line], value, true); }
   /// First slot of `line` whose x is >= value (the line's end if none).
   std::uint32_t first_at_or_after(std::size_t line, double value) const {
     const Line& l = lines_[line];

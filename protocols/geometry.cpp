@@ -593,6 +593,47 @@ bool contains(std::span<const Vec2> v, const Vec2& point) {
 
 bool contains(const ConvexPolygon& polygon, const Vec2& point) { return contains(std::span<const Vec2>(polygon.vertices), point); }
 
+void RowSlicer::reset(const ConvexPolygon& polygon) {
+  const std::vector<Vec2>& v = polygon.vertices;
+  const std::size_t n = v.size();
+  left_.edges.clear();
+  right_.edges.clear();
+  left_.at = right_.at = 0;
+  valid_ = n >= 3;
+  if (!valid_) return;
+  auto next = [n](std::size_t i) { return i + 1 == n ? 0 : i + 1; };
+  auto prev = [n](std::size_t i) { return i == 0 ? n - 1 : i - 1; };
+  std::size_t low = 0, high = 0;
+  double largest_x = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (v[i].y() < v[low].y()) low = i;
+    if (v[i].y() > v[high].y()) high = i;
+    largest_x = std::max(largest_x, std::fabs(v[i].x()));
+  }
+  y_min_ = v[low].y();
+  y_max_ = v[high].y();
+  // CCW, the bottom edge (if horizontal) runs left to right and the top edge right to left:
+  // the right chain climbs from the last bottom vertex to the first top vertex, the left chain
+  // from the first bottom vertex (walking backwards) to the last top vertex.
+  std::size_t right_start = low, left_start = low;
+  for (std::size_t k = 0; k < n && v[next(right_start)].y() == y_min_; ++k) right_start = next(right_start);
+  for (std::size_t k = 0; k < n && v[prev(left_start)].y() == y_min_; ++k) left_start = prev(left_start);
+  // The slope form x0 + (y − y0)·slope has (y − y0)·slope within a few ulps of the edge's Δx
+  // (0 <= y − y0 <= Δy), so every end is within a few ulps of max |x|; 64 ulps is ample.
+  margin_ = 64.0 * std::numeric_limits<double>::epsilon() * largest_x + std::numeric_limits<double>::denorm_min();
+  auto add = [this](Chain& chain, const Vec2& a, const Vec2& b) {
+    const double slope = (b.x() - a.x()) / (b.y() - a.y());
+    if (!std::isfinite(slope)) margin_ = std::numeric_limits<double>::infinity();
+    chain.edges.push_back(Edge{b.y(), a.x(), a.y(), std::isfinite(slope) ? slope : 0.0});
+  };
+  for (std::size_t i = right_start, k = 0; k < n && v[i].y() < y_max_; i = next(i), ++k) add(right_, v[i], v[next(i)]);
+  for (std::size_t i = left_start, k = 0; k < n && v[i].y() < y_max_; i = prev(i), ++k) add(left_, v[i], v[prev(i)]);
+  // Zero height breaks ConvexPolygon's promise; the caller falls back to contains().
+  if (right_.edges.empty() || left_.edges.empty()) valid_ = false;
+}
+
+std::pair<double, double> RowSlicer::extent(double y) { return {left_.x(y), right_.x(y)}; }
+
 bool is_gabriel_neighbour(const Vec2& a, const Vec2& b, std::span<const Vec2> others) {
   // q is strictly inside the circle on diameter ab iff the angle aqb is obtuse.
   for (const Vec2& q : others)

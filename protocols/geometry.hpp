@@ -6,6 +6,7 @@
 #include <limits>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "net/vec2.hpp"
@@ -125,6 +126,43 @@ double max_vertex_distance(const ConvexPolygon& polygon, const Vec2& point);
 bool contains(const ConvexPolygon& polygon, const Vec2& point);
 /// The same for the vertices of a convex polygon held elsewhere (e.g. in a message).
 bool contains(std::span<const Vec2> vertices, const Vec2& point);
+
+/// The x-extent of a convex polygon on horizontal lines taken bottom to top: a scanline over
+/// sensor rows. Each extent end comes from one edge (the two monotone chains are walked once,
+/// no search per line) and lies within margin() of the exact end, so a point farther than
+/// margin() inside both ends is inside as contains() decides; only points near an end need
+/// the exact test.
+class RowSlicer {
+ public:
+  /// Starts on `polygon` (CCW, as ConvexPolygon promises); the polygon must outlive the walk.
+  void reset(const ConvexPolygon& polygon);
+  /// False for fewer than 3 vertices or zero height (not a ConvexPolygon: use contains()).
+  bool valid() const { return valid_; }
+  double y_min() const { return y_min_; }
+  double y_max() const { return y_max_; }
+  /// Bound on |computed end − exact end| for every extent(); +inf for absurd input (a slope
+  /// that overflows), which sends every point to the exact test.
+  double margin() const { return margin_; }
+  /// {left, right} ends at height y, for y in [y_min, y_max], never below the previous call's.
+  std::pair<double, double> extent(double y);
+
+ private:
+  struct Edge {
+    double y_top, x0, y0, slope;  // x(y) = x0 + (y − y0)·slope on [y0, y_top]
+  };
+  struct Chain {
+    std::vector<Edge> edges;
+    std::size_t at = 0;
+    double x(double y) {
+      while (at + 1 < edges.size() && y > edges[at].y_top) ++at;
+      const Edge& e = edges[at];
+      return e.x0 + (y - e.y0) * e.slope;
+    }
+  };
+  Chain left_, right_;
+  double y_min_ = 0.0, y_max_ = 0.0, margin_ = 0.0;
+  bool valid_ = false;
+};
 
 /// Sign of the cross product (b − a) × (c − a), computed exactly: +1 when c is left of the
 /// directed line a→b, −1 right, 0 on it. Coordinates must not overflow or underflow.

@@ -35,6 +35,23 @@ class CentroidAccumulator {
         add_row_scaled(y, xs, rhos, n, area, [this](double rho) { return scaling_(rho); });
     }
   }
+  /// Adds the n sensors (xs[k], y) all reading `rho` (a uniform field): n calls of add() to the
+  /// bit, with the weight computed once.
+  void add_row_uniform(double y, const double* xs, std::size_t n, double rho, double area) {
+    const double w = scaling_(rho) * area;
+    if (!(w > 0.0) || n == 0) return;
+    double mass = mass_, mx = moment_x_, my = moment_y_;
+    const double wy = w * y;
+    for (std::size_t k = 0; k < n; ++k) {
+      mass += w;
+      mx += w * xs[k];
+      my += wy;
+    }
+    mass_ = mass;
+    moment_x_ = mx;
+    moment_y_ = my;
+    weighted_ += static_cast<std::uint32_t>(n);
+  }
   /// True when at least one positive reading was added.
   bool has_mass() const { return weighted_ > 0 && mass_ > 0.0; }
   /// Σ w·s / Σ w; precondition has_mass().

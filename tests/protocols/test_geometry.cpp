@@ -650,3 +650,48 @@ TEST_CASE("Degenerate and extreme site sets give finite cells that partition the
     REQUIRE(total == Approx(1.0).epsilon(1e-12));
   }
 }
+
+TEST_CASE("The row slicer's ends are within its margin of the exact ones on random cells",
+          "[protocols]") {
+  // Points margin() inside a computed end must be inside as contains() decides, points
+  // 2·margin() outside must be out. Random Voronoi cells (tilted edges), the rectangle (flat
+  // top and bottom, rows exactly on them) and a sliver with edges almost horizontal.
+  Rng rng(11);
+  std::vector<ConvexPolygon> polygons{geo::rectangle(0.1, 0.2, 0.7, 0.9),
+                                      ConvexPolygon{{Vec2{0, 0.5}, Vec2{1, 0.5 + 1e-9}, Vec2{0.2, 0.5 + 3e-9}}}};
+  for (int set = 0; set < 40; ++set) {
+    std::vector<Vec2> sites;
+    for (int i = 0; i < 12; ++i) sites.push_back(Vec2{rng.uniform(), rng.uniform()});
+    for (const Cell& cell : geo::voronoi_cells(sites, geo::rectangle(0, 0, 1, 1))) polygons.push_back(cell.polygon);
+  }
+  int tested = 0;
+  geo::RowSlicer slicer;
+  for (const ConvexPolygon& polygon : polygons) {
+    slicer.reset(polygon);
+    REQUIRE(slicer.valid());
+    const double m = slicer.margin();
+    REQUIRE(m < 1e-13);
+    std::vector<double> rows{slicer.y_min(), slicer.y_max()};
+    for (const Vec2& v : polygon.vertices) rows.push_back(v.y());  // rows through vertices
+    for (int k = 0; k < 30; ++k) rows.push_back(rng.uniform(slicer.y_min(), slicer.y_max()));
+    std::sort(rows.begin(), rows.end());
+    for (const double y : rows) {
+      const auto [left, right] = slicer.extent(y);
+      INFO("y " << y << " left " << left << " right " << right);
+      REQUIRE(left <= right + 2 * m);
+      CHECK_FALSE(geo::contains(polygon, Vec2{left - 2 * m, y}));
+      CHECK_FALSE(geo::contains(polygon, Vec2{right + 2 * m, y}));
+      if (left + m <= right - m) {
+        CHECK(geo::contains(polygon, Vec2{left + m, y}));
+        CHECK(geo::contains(polygon, Vec2{right - m, y}));
+        ++tested;
+      }
+    }
+  }
+  CHECK(tested > 10000);
+  // Fewer than three vertices, or no height: not a polygon to slice.
+  slicer.reset(ConvexPolygon{{Vec2{0, 0}, Vec2{1, 1}}});
+  CHECK_FALSE(slicer.valid());
+  slicer.reset(ConvexPolygon{{Vec2{0, 0.5}, Vec2{1, 0.5}, Vec2{0.5, 0.5}}});
+  CHECK_FALSE(slicer.valid());
+}
