@@ -632,8 +632,6 @@ void RowSlicer::reset(const ConvexPolygon& polygon) {
   if (right_.edges.empty() || left_.edges.empty()) valid_ = false;
 }
 
-std::pair<double, double> RowSlicer::extent(double y) { return {left_.x(y), right_.x(y)}; }
-
 bool is_gabriel_neighbour(const Vec2& a, const Vec2& b, std::span<const Vec2> others) {
   // q is strictly inside the circle on diameter ab iff the angle aqb is obtuse.
   for (const Vec2& q : others)

@@ -144,7 +144,7 @@ class RowSlicer {
   /// that overflows), which sends every point to the exact test.
   double margin() const { return margin_; }
   /// {left, right} ends at height y, for y in [y_min, y_max], never below the previous call's.
-  std::pair<double, double> extent(double y);
+  std::pair<double, double> extent(double y) { return {left_.x(y), right_.x(y)}; }
 
  private:
   struct Edge {
