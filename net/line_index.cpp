@@ -9,6 +9,7 @@ bool LineIndex::build(std::span<const Vec2> positions, std::span<const sim::Node
   lines_.clear();
   max_abs_x_ = max_inv_dx_ = 0.0;
   max_even_count_ = 0;
+  lines_even_ = false;
   xs_.clear();
   ys_.clear();
   ids_.clear();
@@ -55,6 +56,17 @@ bool LineIndex::build(std::span<const Vec2> positions, std::span<const sim::Node
     }
     lines_.push_back(line);
     begin = end;
+  }
+  lines_even_ = false;
+  if (lines_.size() >= 2) {
+    const double dy = (lines_.back().y - lines_.front().y) / static_cast<double>(lines_.size() - 1);
+    bool even = dy > 0.0;
+    for (std::size_t l = 0; even && l < lines_.size(); ++l)
+      even = std::fabs(lines_[l].y - (lines_.front().y + static_cast<double>(l) * dy)) <= 1e-9 * dy;
+    if (even) {
+      lines_even_ = true;
+      inv_line_dy_ = 1.0 / dy;
+    }
   }
   return true;
 }

@@ -34,12 +34,7 @@ class LineIndex {
   /// Calls `visit(line, y, begin, end)` for every line with y in [y0, y1]: its slots [begin, end).
   template <class Visit>
   void for_each_line_between(double y0, double y1, Visit&& visit) const {
-    std::size_t lo = 0, hi = lines_.size();
-    while (lo < hi) {
-      const std::size_t mid = (lo + hi) / 2;
-      if (lines_[mid].y < y0) lo = mid + 1; else hi = mid;
-    }
-    for (std::size_t l = lo; l < lines_.size() && lines_[l].y <= y1; ++l)
+    for (std::size_t l = first_line_at_or_above(y0); l < lines_.size() && lines_[l].y <= y1; ++l)
       visit(l, lines_[l].y, lines_[l].begin, lines_[l].end);
   }
   /// First slot of `line` whose x is >= value (the line's end if none).
@@ -69,11 +64,7 @@ class LineIndex {
     // Lines are picked with a hair of slack; the exact test decides (a point at exactly the
     // range must not be lost to the rounding of cy ± radius).
     const double slack = 1e-12 * (std::fabs(cx) + std::fabs(cy) + radius) + 1e-300;
-    std::size_t lo = 0, hi = lines_.size();
-    while (lo < hi) {
-      const std::size_t mid = (lo + hi) / 2;
-      if (lines_[mid].y < cy - radius - slack) lo = mid + 1; else hi = mid;
-    }
+    const std::size_t lo = first_line_at_or_above(cy - radius - slack);
     const bool sure_estimates = estimates_are_sure(cx, radius);
     const double min_sure_half = radius * kMinSureHalf;
     // Two passes over batches of lines: first the estimates, with prefetches of the memory each
@@ -186,6 +177,27 @@ class LineIndex {
 #endif
   }
 
+  /// The first line with y >= value (the line count if none). Evenly spaced lines (a grid's
+  /// rows) start from an O(1) estimate; the steps make it exact either way.
+  std::size_t first_line_at_or_above(double value) const {
+    const std::size_t count = lines_.size();
+    std::size_t l;
+    if (lines_even_) {
+      const double k = (value - lines_[0].y) * inv_line_dy_;
+      l = !(k > 0.0) ? 0 : k >= static_cast<double>(count) ? count : static_cast<std::size_t>(k);
+      while (l > 0 && lines_[l - 1].y >= value) --l;
+      while (l < count && lines_[l].y < value) ++l;
+      return l;
+    }
+    std::size_t hi = count;
+    l = 0;
+    while (l < hi) {
+      const std::size_t mid = (l + hi) / 2;
+      if (lines_[mid].y < value) l = mid + 1; else hi = mid;
+    }
+    return l;
+  }
+
   // A slot near x on the line: first slot with x_k >= x (from_left) or one past the last with
   // x_k <= x; evenly spaced lines answer in O(1), others by binary search.
   std::uint32_t estimate(const Line& line, double x, bool from_left) const {
@@ -212,6 +224,8 @@ class LineIndex {
   // For the rounding bound of sure estimates (0 / 0 / 0 when no line is evenly spaced).
   double max_abs_x_ = 0.0, max_inv_dx_ = 0.0;
   std::uint32_t max_even_count_ = 0;
+  bool lines_even_ = false;  // line y evenly spaced (to 1e-9 of the spacing): see first_line_at_or_above
+  double inv_line_dy_ = 0.0;
   std::vector<double> xs_, ys_;
   std::vector<sim::NodeId> ids_;
 };
