@@ -56,8 +56,10 @@ class LineIndex {
   /// Calls `visit(begin, end)` for each run of slots [begin, end) whose points lie within
   /// `radius` of `center` (inclusive), one run per line crossed. `prefetch(a, c)` (optional) is
   /// told every line's estimated run first, so the caller can prefetch what it will touch there.
+  /// Both are taken by value: the loop then keeps what they capture in registers (a reference
+  /// would be reloaded after every write the caller makes through a pointer).
   template <class Visit, class Prefetch>
-  void for_each_run_within(const Vec2& center, double radius, Visit&& visit, Prefetch&& prefetch) const {
+  void for_each_run_within(const Vec2& center, double radius, Visit visit, Prefetch prefetch) const {
     if (lines_.empty() || !(radius >= 0.0)) return;
     const double r2 = radius * radius, cx = center.x(), cy = center.y();
     const double* const xs = xs_.data();
