@@ -7,6 +7,9 @@ namespace masnet::net {
 
 bool LineIndex::build(std::span<const Vec2> positions, std::span<const sim::NodeId> ids, double min_mean_length) {
   lines_.clear();
+  max_abs_x_ = max_inv_dx_ = 0.0;
+  max_even_count_ = 0;
+  lines_even_ = false;
   xs_.clear();
   ys_.clear();
   ids_.clear();
@@ -34,7 +37,7 @@ bool LineIndex::build(std::span<const Vec2> positions, std::span<const sim::Node
   for (std::uint32_t begin = 0; begin < n;) {
     std::uint32_t end = begin + 1;
     while (end < n && ys_[end] == ys_[begin]) ++end;
-    Line line{ys_[begin], begin, end, xs_[begin], 0.0, false};
+    Line line{ys_[begin], begin, end, xs_[begin], 0.0, static_cast<double>(end - begin) - 0.5, false};
     const std::uint32_t count = end - begin;
     if (count >= 2) {
       // Evenly spaced (to 1e-9 of the spacing): slot estimates are then exact up to ±1, and the
@@ -46,10 +49,24 @@ bool LineIndex::build(std::span<const Vec2> positions, std::span<const sim::Node
       if (even) {
         line.inv_dx = 1.0 / dx;
         line.even = true;
+        max_inv_dx_ = std::max(max_inv_dx_, line.inv_dx);
+        max_even_count_ = std::max(max_even_count_, count);
+        max_abs_x_ = std::max({max_abs_x_, std::fabs(xs_[begin]), std::fabs(xs_[end - 1])});
       }
     }
     lines_.push_back(line);
     begin = end;
+  }
+  lines_even_ = false;
+  if (lines_.size() >= 2) {
+    const double dy = (lines_.back().y - lines_.front().y) / static_cast<double>(lines_.size() - 1);
+    bool even = dy > 0.0;
+    for (std::size_t l = 0; even && l < lines_.size(); ++l)
+      even = std::fabs(lines_[l].y - (lines_.front().y + static_cast<double>(l) * dy)) <= 1e-9 * dy;
+    if (even) {
+      lines_even_ = true;
+      inv_line_dy_ = 1.0 / dy;
+    }
   }
   return true;
 }

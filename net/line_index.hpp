@@ -1,11 +1,15 @@
 #pragma once
 // Static points grouped into horizontal lines (equal y), each sorted by x. When the points lie
 // on rows — a sensor grid — a disk meets every line in one contiguous run of slots, found with a
-// few exact distance tests: a range query costs O(lines crossed), not O(points inside). The
-// radio uses it to book a frame heard by thousands of sensors as a handful of runs.
+// few exact distance tests (none when the estimate is provably exact): a range query costs
+// O(lines crossed), not O(points inside). The radio uses it to book a frame heard by thousands
+// of sensors as a handful of runs.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#if defined(__SSE2__)
+#include <emmintrin.h>  // baseline x86-64
+#endif
 #include <span>
 #include <utility>
 #include <vector>
@@ -30,12 +34,7 @@ class LineIndex {
   /// Calls `visit(line, y, begin, end)` for every line with y in [y0, y1]: its slots [begin, end).
   template <class Visit>
   void for_each_line_between(double y0, double y1, Visit&& visit) const {
-    std::size_t lo = 0, hi = lines_.size();
-    while (lo < hi) {
-      const std::size_t mid = (lo + hi) / 2;
-      if (lines_[mid].y < y0) lo = mid + 1; else hi = mid;
-    }
-    for (std::size_t l = lo; l < lines_.size() && lines_[l].y <= y1; ++l)
+    for (std::size_t l = first_line_at_or_above(y0); l < lines_.size() && lines_[l].y <= y1; ++l)
       visit(l, lines_[l].y, lines_[l].begin, lines_[l].end);
   }
   /// A guess at first_at_or_after(line, value) that reads no coordinates (exact for evenly
@@ -60,24 +59,25 @@ class LineIndex {
   /// Calls `visit(begin, end)` for each run of slots [begin, end) whose points lie within
   /// `radius` of `center` (inclusive), one run per line crossed. `prefetch(a, c)` (optional) is
   /// told every line's estimated run first, so the caller can prefetch what it will touch there.
+  /// Both are taken by value: the loop then keeps what they capture in registers (a reference
+  /// would be reloaded after every write the caller makes through a pointer).
   template <class Visit, class Prefetch>
-  void for_each_run_within(const Vec2& center, double radius, Visit&& visit, Prefetch&& prefetch) const {
+  void for_each_run_within(const Vec2& center, double radius, Visit visit, Prefetch prefetch) const {
     if (lines_.empty() || !(radius >= 0.0)) return;
     const double r2 = radius * radius, cx = center.x(), cy = center.y();
     const double* const xs = xs_.data();
     // Lines are picked with a hair of slack; the exact test decides (a point at exactly the
     // range must not be lost to the rounding of cy ± radius).
     const double slack = 1e-12 * (std::fabs(cx) + std::fabs(cy) + radius) + 1e-300;
-    std::size_t lo = 0, hi = lines_.size();
-    while (lo < hi) {
-      const std::size_t mid = (lo + hi) / 2;
-      if (lines_[mid].y < cy - radius - slack) lo = mid + 1; else hi = mid;
-    }
+    const std::size_t lo = first_line_at_or_above(cy - radius - slack);
+    const bool sure_estimates = estimates_are_sure(cx, radius);
+    const double min_sure_half = radius * kMinSureHalf;
     // Two passes over batches of lines: first the estimates, with prefetches of the memory each
     // line will touch (on large networks every line is a cache miss: overlapping them is most of
-    // the cost), then the exact steps.
+    // the cost), then the exact steps where the estimate is not sure.
     struct Pending {
       std::uint32_t line, a, c;
+      bool sure;
       double dy2;
     };
     constexpr std::size_t kBatch = 32;
@@ -89,28 +89,35 @@ class LineIndex {
         const Line& line = lines_[l];
         const double ddy = line.y - cy, dy2 = ddy * ddy;
         if (dy2 > r2) continue;
-        const double half = std::sqrt(r2 - dy2);  // starting points only: the steps are exact
-        const std::uint32_t a = estimate(line, cx - half, true), c = estimate(line, cx + half, false);
-        __builtin_prefetch(xs + (a > line.begin ? a - 1 : a));
-        __builtin_prefetch(xs + (c < line.end ? c : c - 1));
+        const double half = std::sqrt(r2 - dy2);
+        std::uint32_t a, c;
+        const bool sure = sure_estimates && line.even && half >= min_sure_half && sure_run(line, cx, half, a, c);
+        if (!sure) {  // starting points only: the steps below are exact
+          a = estimate(line, cx - half, true);
+          c = estimate(line, cx + half, false);
+          __builtin_prefetch(xs + (a > line.begin ? a - 1 : a));
+          __builtin_prefetch(xs + (c < line.end ? c : c - 1));
+        }
         prefetch(a, c);
-        pending[n++] = Pending{static_cast<std::uint32_t>(l), a, c, dy2};
+        pending[n++] = Pending{static_cast<std::uint32_t>(l), a, c, sure, dy2};
       }
       for (std::size_t i = 0; i < n; ++i) {
-        const Line& line = lines_[pending[i].line];
-        const double dy2 = pending[i].dy2;
-        auto inside = [&](std::uint32_t k) {
-          const double ddx = xs[k] - cx;
-          return ddx * ddx + dy2 <= r2;
-        };
-        // From the estimate (exact for evenly spaced lines) step with the exact test: the run is
-        // where `inside` holds, an interval of the sorted line.
         std::uint32_t a = pending[i].a, c = pending[i].c;
-        while (a > line.begin && inside(a - 1)) --a;
-        while (a < line.end && !inside(a) && xs[a] < cx) ++a;
-        if (c < a) c = a;
-        while (c < line.end && inside(c)) ++c;
-        while (c > a && !inside(c - 1)) --c;
+        if (!pending[i].sure) {
+          const Line& line = lines_[pending[i].line];
+          const double dy2 = pending[i].dy2;
+          auto inside = [&](std::uint32_t k) {
+            const double ddx = xs[k] - cx;
+            return ddx * ddx + dy2 <= r2;
+          };
+          // From the estimate (exact for evenly spaced lines) step with the exact test: the run
+          // is where `inside` holds, an interval of the sorted line.
+          while (a > line.begin && inside(a - 1)) --a;
+          while (a < line.end && !inside(a) && xs[a] < cx) ++a;
+          if (c < a) c = a;
+          while (c < line.end && inside(c)) ++c;
+          while (c > a && !inside(c - 1)) --c;
+        }
         if (a < c) visit(a, c);
       }
     }
@@ -125,8 +132,77 @@ class LineIndex {
     double y;
     std::uint32_t begin, end;  // slots
     double x0, inv_dx;         // evenly spaced lines: slot ≈ begin + (x − x0)·inv_dx
+    double last_half;          // end − begin − 0.5: clamp for sure_run
     bool even;
   };
+
+  // Sure estimates. On an evenly spaced line the run of a disk is [ceil(kl), floor(kr) + 1) in
+  // slot coordinates kl, kr of the chord's ends. When kl and kr lie at least kSureMargin (in
+  // slots) from an integer, and the rounding of the whole computation — estimate, the line's
+  // deviation from even spacing, and the uncertainty of the float test (x − cx)² + dy² <= r²
+  // itself — is provably smaller, that run is exactly what the float test decides: no point is
+  // near enough to the circle for rounding to move it across. The bound on the test's
+  // uncertainty grows as the chord shrinks (tangent lines), so short chords are never sure.
+  static constexpr double kSureMargin = 1e-6;
+  static constexpr double kMinSureHalf = 1.0 / 1024;  // of the radius
+  static constexpr double kUlp = 0x1p-52;
+
+  /// Whether sure_run may be used for a disk at x = cx with this radius: a bound, in slots, of
+  /// every rounding error involved, well below the margin. Terms: 1e-8 the lines' deviation from
+  /// even spacing (<= 1e-9, checked by build); 16u·(|cx| + r + max|x|)·inv_dx the rounding of
+  /// the chord ends, of x − cx and of the product by inv_dx; 4096u·r·inv_dx the float test's own
+  /// uncertainty, about 2.3u·r²/half with half >= r/1024; 4u·count the shift by one.
+  bool estimates_are_sure(double cx, double radius) const {
+    const double rounding =
+        1e-8 + kUlp * (max_inv_dx_ * (16.0 * (std::fabs(cx) + radius + max_abs_x_) + 4096.0 * radius) +
+                       4.0 * (static_cast<double>(max_even_count_) + 2.0));
+    return rounding <= 0.25 * kSureMargin;  // false on NaN
+  }
+
+  /// The run [a, c) of an evenly spaced line inside the chord [cx − half, cx + half], if both
+  /// ends lie at least kSureMargin from a slot; false otherwise. Both ends in one SSE2 register.
+  static bool sure_run(const Line& line, double cx, double half, std::uint32_t& a, std::uint32_t& c) {
+#if !defined(__SSE2__)
+    return false;  // the exact steps do it all
+#else
+    const __m128d ends = _mm_add_pd(_mm_set1_pd(cx), _mm_mul_pd(_mm_set1_pd(half), _mm_set_pd(1.0, -1.0)));
+    __m128d k = _mm_mul_pd(_mm_sub_pd(ends, _mm_set1_pd(line.x0)), _mm_set1_pd(line.inv_dx));
+    // Clamped to the line (a chord end beyond it is half a slot past the end slot), then
+    // shifted by one: truncation is then floor, and floor(k + 1) = ceil(k) = floor(k) + 1 for
+    // the non-integer k that pass the margin test.
+    k = _mm_min_pd(_mm_max_pd(k, _mm_set1_pd(-0.5)), _mm_set1_pd(line.last_half));
+    k = _mm_add_pd(k, _mm_set1_pd(1.0));
+    const __m128i slots = _mm_cvttpd_epi32(k);
+    const __m128d fraction = _mm_sub_pd(k, _mm_cvtepi32_pd(slots));
+    const __m128d from_middle = _mm_andnot_pd(_mm_set1_pd(-0.0), _mm_sub_pd(fraction, _mm_set1_pd(0.5)));
+    if (_mm_movemask_pd(_mm_cmple_pd(from_middle, _mm_set1_pd(0.5 - kSureMargin))) != 3) return false;
+    a = line.begin + static_cast<std::uint32_t>(_mm_cvtsi128_si32(slots));
+    c = line.begin + static_cast<std::uint32_t>(_mm_cvtsi128_si32(_mm_shuffle_epi32(slots, 1)));
+    return true;
+#endif
+  }
+
+  /// The first line with y >= value (the line count if none). Evenly spaced lines (a grid's
+  /// rows) start from an O(1) estimate; the steps make it exact either way.
+  std::size_t first_line_at_or_above(double value) const {
+    const std::size_t count = lines_.size();
+    std::size_t l;
+    if (lines_even_) {
+      const double k = (value - lines_[0].y) * inv_line_dy_;
+      l = !(k > 0.0) ? 0 : k >= static_cast<double>(count) ? count : static_cast<std::size_t>(k);
+      while (l > 0 && lines_[l - 1].y >= value) --l;
+      while (l < count && lines_[l].y < value) ++l;
+      return l;
+    }
+    std::size_t hi = count;
+    l = 0;
+    while (l < hi) {
+      const std::size_t mid = (l + hi) / 2;
+      if (lines_[mid].y < value) l = mid + 1; else hi = mid;
+    }
+    return l;
+  }
+
   // A slot near x on the line: first slot with x_k >= x (from_left) or one past the last with
   // x_k <= x; evenly spaced lines answer in O(1), others by binary search.
   std::uint32_t estimate(const Line& line, double x, bool from_left) const {
@@ -150,6 +226,11 @@ class LineIndex {
   }
 
   std::vector<Line> lines_;
+  // For the rounding bound of sure estimates (0 / 0 / 0 when no line is evenly spaced).
+  double max_abs_x_ = 0.0, max_inv_dx_ = 0.0;
+  std::uint32_t max_even_count_ = 0;
+  bool lines_even_ = false;  // line y evenly spaced (to 1e-9 of the spacing): see first_line_at_or_above
+  double inv_line_dy_ = 0.0;
   std::vector<double> xs_, ys_;
   std::vector<sim::NodeId> ids_;
 };

@@ -208,8 +208,14 @@ class Radio {
   mutable std::vector<std::uint64_t> rx_count_, rx_bytes_;            // [type][hot]
   // Bulk bookings (sensor grids, no battery): a frame heard by a run of slots [a, c) adds at a
   // and subtracts at c; unsigned wrap-around keeps the folded sums exact.
-  // Interleaved: one run end touches one cache line. [2·hot] heard bytes, [2·hot + 1] overheard.
-  mutable std::vector<std::uint64_t> heard_diff_;  // [2·(hot + 1)]
+  // Heard bytes and overheard count packed in one word, so a run end is one write: bytes in the
+  // low kHeardBytesBits, the count above. A slot's folded sum decodes exactly while the pending
+  // bulk frames number below 2^(64 − kHeardBytesBits) and their bytes below 2^kHeardBytesBits
+  // (checked per frame; past that, fold first).
+  static constexpr unsigned kHeardBytesBits = 40;
+  static constexpr std::uint64_t kOneOverheard = std::uint64_t{1} << kHeardBytesBits;
+  mutable std::vector<std::uint64_t> heard_diff_;  // [hot + 1]
+  mutable std::uint64_t pending_bulk_frames_ = 0, pending_bulk_bytes_ = 0;
   mutable std::vector<std::uint64_t> rx_count_diff_, rx_bytes_diff_;  // [type][hot + 1]
   mutable bool diffs_pending_ = false;
 
