@@ -60,10 +60,12 @@ class LineIndex {
   /// `radius` of `center` (inclusive), one run per line crossed. `prefetch(a, c)` (optional) is
   /// told every line's estimated run first, so the caller can prefetch what it will touch there.
   /// Both are taken by value: the loop then keeps what they capture in registers (a reference
-  /// would be reloaded after every write the caller makes through a pointer).
+  /// would be reloaded after every write the caller makes through a pointer). Returns the number
+  /// of slots in the runs, so a visitor need not count (small visitors travel in registers).
   template <class Visit, class Prefetch>
-  void for_each_run_within(const Vec2& center, double radius, Visit visit, Prefetch prefetch) const {
-    if (lines_.empty() || !(radius >= 0.0)) return;
+  std::uint64_t for_each_run_within(const Vec2& center, double radius, Visit visit, Prefetch prefetch) const {
+    std::uint64_t covered = 0;
+    if (lines_.empty() || !(radius >= 0.0)) return covered;
     const double r2 = radius * radius, cx = center.x(), cy = center.y();
     const double* const xs = xs_.data();
     // Lines are picked with a hair of slack; the exact test decides (a point at exactly the
@@ -118,13 +120,17 @@ class LineIndex {
           while (c < line.end && inside(c)) ++c;
           while (c > a && !inside(c - 1)) --c;
         }
-        if (a < c) visit(a, c);
+        if (a < c) {
+          visit(a, c);
+          covered += c - a;
+        }
       }
     }
+    return covered;
   }
   template <class Visit>
-  void for_each_run_within(const Vec2& center, double radius, Visit&& visit) const {
-    for_each_run_within(center, radius, std::forward<Visit>(visit), [](std::uint32_t, std::uint32_t) {});
+  std::uint64_t for_each_run_within(const Vec2& center, double radius, Visit&& visit) const {
+    return for_each_run_within(center, radius, std::forward<Visit>(visit), [](std::uint32_t, std::uint32_t) {});
   }
 
  private:

@@ -71,7 +71,7 @@ bool Radio::unicast(NodeId source, NodeId destination, Payload payload) {
   MASNET_ASSERT(destination != source && sim::index(destination) < nodes_.size(),
                 "unicast to a registered other node");
   const double distance = (position(destination) - position(source)).norm();
-  return transmit(source, destination, distance, std::move(payload));
+  return transmit(source, destination, distance, std::move(payload), distance);
 }
 
 void Radio::prepare_index() {
@@ -264,7 +264,7 @@ std::uint32_t Radio::new_flight() {
   return static_cast<std::uint32_t>(flights_.size() - 1);
 }
 
-bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& payload) {
+bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& payload, double destination_distance) {
   if (index_dirty_) prepare_index();
   Node& src = nodes_[sim::index(source)];
   if (!src.alive) {
@@ -372,13 +372,10 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     if (bulk && !is_broadcast) {
       // Unicasts, the bulk of the traffic: overhearing is one packed word per run end. The
       // lambda captures no references, so nothing is reloaded after each write.
-      std::uint64_t covered = 0;
-      line_index_.for_each_run_within(center, range, [heard_diff, heard_booking, &covered](std::uint32_t a, std::uint32_t c) {
+      hearers += line_index_.for_each_run_within(center, range, [heard_diff, heard_booking](std::uint32_t a, std::uint32_t c) {
         heard_diff[a] += heard_booking;
         heard_diff[c] -= heard_booking;
-        covered += c - a;
       }, prefetch);
-      hearers += covered;
     } else if (bulk) {
       line_index_.for_each_run_within(center, range, [&](std::uint32_t a, std::uint32_t c) {
         heard_diff[a] += heard_booking;
@@ -439,7 +436,9 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
       if (id != source && id != destination) overhear(id, nodes_[sim::index(id)].hot);
     });
     // The addressee is decided by its distance, not by the grid's rounding at the boundary.
-    if ((position(destination) - center).norm() <= range)
+    // The same arithmetic as unicast()'s distance, so the known value decides identically.
+    const double distance = destination_distance >= 0.0 ? destination_distance : (position(destination) - center).norm();
+    if (distance <= range)
       receive(destination, destination_hot);
     else
       ++src.unreachable_count;
@@ -449,7 +448,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   total_heard_bytes_ += hearers * bytes;
   if (receivers.empty()) return true;
   // Delivery order is by node id, whatever the grid's layout.
-  if (receivers.size() > 1) std::sort(receivers.begin(), receivers.end());
+  // (On a sensor grid the runs already come in id order: check before sorting.)
+  if (receivers.size() > 1 && !std::is_sorted(receivers.begin(), receivers.end())) std::sort(receivers.begin(), receivers.end());
 
   const std::uint32_t flight = new_flight();
   InFlight& f = flights_[flight];

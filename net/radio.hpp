@@ -164,7 +164,9 @@ class Radio {
   };
 
   void add_node(NodeId id, Node node);
-  bool transmit(NodeId source, NodeId destination, double range, Payload&& payload);
+  /// A unicast passes its addressee's distance (the range before the max_range cap), so the
+  /// reach test need not look the addressee up again.
+  bool transmit(NodeId source, NodeId destination, double range, Payload&& payload, double destination_distance = -1.0);
   void prepare_index();
   /// Folds the bulk (run-length) bookings into the per-node counters.
   void materialize() const;
