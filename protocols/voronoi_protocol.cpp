@@ -139,8 +139,9 @@ void VoronoiProtocol::finish_update(bool truncated) {
   // The Lloyd target: centroid of the readings inside V_i weighted by SK(ρ)·A(s).
   CentroidAccumulator accumulator(context_.scaling);
   cell_readings_.clear();
+  const bool all_inside = cell_is_sensed();
   for (const HeardReading& r : readings_)
-    if (in_cell(r.position)) {
+    if (all_inside || contains(cell_.polygon, r.position)) {
       accumulator.add(r.position, r.value, host_.sensor_area(r.sensor));
       cell_readings_.push_back({r.position, r.value});
       ++record_.readings;
@@ -241,16 +242,17 @@ void VoronoiProtocol::count(net::MessageType type, std::uint32_t bytes) {
   tally.bytes += bytes;
 }
 
-bool VoronoiProtocol::in_cell(const Vec2& p) const {
+bool VoronoiProtocol::cell_is_sensed() const {
   // Sensors answered because they lie in the cell sent with SENSE (the same exact test): while
   // the cell is still that one, every reading is inside without testing it again.
-  return cell_.polygon.vertices == sensed_cell_ || contains(cell_.polygon, p);
+  return cell_.polygon.vertices == sensed_cell_;
 }
 
 double VoronoiProtocol::farthest_reading_in_cell() const {
   double farthest = 0.0;
+  const bool all_inside = cell_is_sensed();
   for (const HeardReading& r : readings_)
-    if (in_cell(r.position))
+    if (all_inside || contains(cell_.polygon, r.position))
       farthest = std::max(farthest, (r.position - position_).norm());
   return farthest;
 }

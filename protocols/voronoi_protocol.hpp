@@ -106,7 +106,8 @@ class VoronoiProtocol {
   void answer_discover(const net::Discover& discover);
   void count(net::MessageType type, std::uint32_t bytes);
   double farthest_reading_in_cell() const;
-  bool in_cell(const Vec2& p) const;
+  /// True while the cell is the one sent with the last SENSE: every reading is then inside.
+  bool cell_is_sensed() const;
   Cell compute_cell() const;
 
   RobotHost& host_;
