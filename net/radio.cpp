@@ -516,16 +516,27 @@ void Radio::schedule_delivery(std::uint32_t flight, sim::Time arrival) {
 void Radio::run_batch(std::uint32_t batch) {
   if (open_batch_ == batch) open_batch_ = 0xFFFFFFFFu;  // closed: what it triggers goes elsewhere
   // By index: deliveries may schedule new batches, which can reallocate batches_.
-  for (std::size_t i = 0; i < batches_[batch].size(); ++i) deliver(batches_[batch][i]);
+  for (std::size_t i = 0; i < batches_[batch].size(); ++i) {
+    // The frames were written a while ago: fetch the next ones' records while this one is handled.
+    if (i + kDeliveryLookahead < batches_[batch].size()) __builtin_prefetch(&flights_[batches_[batch][i + kDeliveryLookahead]]);
+    deliver(batches_[batch][i]);
+  }
   free_batches_.push_back(batch);
 }
 
 void Radio::deliver(std::uint32_t flight) {
   const InFlight& f = flights_[flight];
-  if (f.only != sim::kNoNode)
+  if (f.only != sim::kNoNode) {
     hand_over(f.frame, f.only);
-  else
-    for (NodeId id : f.receivers) hand_over(f.frame, id);
+  } else {
+    // A broadcast's receivers answer at once and their records are far apart on large
+    // networks (each sensor row is a jump): fetch a few receivers ahead.
+    const std::size_t n = f.receivers.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      if (k + kDeliveryLookahead < n) __builtin_prefetch(&nodes_[sim::index(f.receivers[k + kDeliveryLookahead])]);
+      hand_over(f.frame, f.receivers[k]);
+    }
+  }
   free_flights_.push_back(flight);
 }
 

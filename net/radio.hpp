@@ -76,6 +76,8 @@ class Radio {
  public:
   /// Below this many mobile nodes a linear scan beats maintaining a grid.
   static constexpr std::size_t kMobileScanLimit = 32;
+  /// How many receivers (or frames of a batch) ahead delivery prefetches their records.
+  static constexpr std::size_t kDeliveryLookahead = 4;
 
   Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t seed);
 
