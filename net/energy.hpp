@@ -21,12 +21,16 @@ struct EnergyParams {
   double crossover_m() const { return std::sqrt(free_space_j_per_bit_m2 / multipath_j_per_bit_m4); }
 };
 
-/// Energy to transmit `bits` with range `range_m` metres, joules.
-inline double tx_energy_j(const EnergyParams& p, double bits, double range_m) {
+/// Energy to transmit `bits` with range `range_m` metres, joules; `crossover_m` is
+/// p.crossover_m(), which a caller sending many frames computes once.
+inline double tx_energy_j(const EnergyParams& p, double bits, double range_m, double crossover_m) {
   const double d2 = range_m * range_m;
-  const double amplifier = range_m < p.crossover_m() ? p.free_space_j_per_bit_m2 * d2
-                                                     : p.multipath_j_per_bit_m4 * d2 * d2;
+  const double amplifier = range_m < crossover_m ? p.free_space_j_per_bit_m2 * d2
+                                                 : p.multipath_j_per_bit_m4 * d2 * d2;
   return p.electronics_j_per_bit * bits + amplifier * bits;
+}
+inline double tx_energy_j(const EnergyParams& p, double bits, double range_m) {
+  return tx_energy_j(p, bits, range_m, p.crossover_m());
 }
 
 /// Energy to receive `bits`, joules.

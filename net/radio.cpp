@@ -17,6 +17,10 @@ Radio::Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t
   MASNET_ASSERT(params.max_range > 0 && params.bitrate_bps > 0 && params.loss >= 0 &&
                     params.loss <= 1 && params.latency_s >= 0 && params.jitter_s >= 0,
                 "radio parameters are validated by the scenario loader");
+  // Per-frame constants, computed once (each costs a rounding call or a square root).
+  crossover_m_ = params_.energy.crossover_m();
+  latency_ = sim::seconds(params_.latency_s);
+  for (std::uint32_t bytes = 0; bytes < kAirtimeTableBytes; ++bytes) airtime_table_[bytes] = compute_airtime(bytes);
 }
 
 void Radio::add_node(NodeId id, Node node) {
@@ -59,8 +63,12 @@ Vec2 Radio::position(NodeId node) const {
   return mobile_->position(node);
 }
 
-sim::Duration Radio::airtime(std::uint32_t bytes) const {
+sim::Duration Radio::compute_airtime(std::uint32_t bytes) const {
   return sim::seconds(static_cast<double>(bytes) * 8.0 / params_.bitrate_bps);
+}
+
+sim::Duration Radio::airtime(std::uint32_t bytes) const {
+  return bytes < kAirtimeTableBytes ? airtime_table_[bytes] : compute_airtime(bytes);
 }
 
 bool Radio::broadcast(NodeId source, double range, Payload payload) {
@@ -276,7 +284,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   const MessageType type = type_of(payload);
   const std::uint32_t bytes = size_bytes(payload, params_.sizes);
   const double bits = 8.0 * bytes;
-  const double tx_j = tx_energy_j(params_.energy, bits, range * params_.meters_per_unit);
+  const double tx_j = tx_energy_j(params_.energy, bits, range * params_.meters_per_unit, crossover_m_);
   if (battery && !afford(source, tx_j)) {
     ++src.refused_count;
     return false;
@@ -299,7 +307,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     start = std::max(now, src.busy_until);
     src.busy_until = start + air;
   }
-  const sim::Time arrival = start + air + sim::seconds(params_.latency_s);
+  const sim::Time arrival = start + air + latency_;
 
   // Who hears the frame, decided by positions now. Every node in range pays E_rx for it,
   // addressed or not; without a battery nobody can die of it, so overhearing is two

@@ -165,6 +165,12 @@ class Radio {
     std::uint32_t pending = 0;
   };
 
+  sim::Duration compute_airtime(std::uint32_t bytes) const;
+  static constexpr std::uint32_t kAirtimeTableBytes = 256;  // frames up to this size: a lookup
+  std::array<sim::Duration, kAirtimeTableBytes> airtime_table_{};
+  sim::Duration latency_{};
+  double crossover_m_ = 0.0;
+
   void add_node(NodeId id, Node node);
   /// A unicast passes its addressee's distance (the range before the max_range cap), so the
   /// reach test need not look the addressee up again.
