@@ -4,6 +4,7 @@
 // Bernoulli loss per reception, per-node counters by message type, and the energy ledger of
 // SPEC §4. It knows message formats, never protocol logic. See docs/radio-and-energy.md.
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <deque>
 #include <span>
@@ -263,9 +264,17 @@ void Radio::for_each_mobile_within(const Vec2& center, double range, Visit&& vis
   if (mobile_ids_.empty()) return;
   const double r2 = range * range;
   if (mobile_ids_.size() <= kMobileScanLimit) {
-    const std::vector<Vec2>& positions = mobile_positions_now();
-    for (std::size_t m = 0; m < mobile_ids_.size(); ++m)
-      if ((positions[m] - center).squaredNorm() <= r2) visit(mobile_ids_[m]);
+    // The distance tests first, without a branch (in or out is a coin toss per robot), then the
+    // few robots in range, in index order.
+    static_assert(kMobileScanLimit <= 64);
+    const Vec2* const positions = mobile_positions_now().data();
+    const double cx = center.x(), cy = center.y();
+    std::uint64_t in_range = 0;
+    for (std::size_t m = 0; m < mobile_ids_.size(); ++m) {
+      const double dx = positions[m].x() - cx, dy = positions[m].y() - cy;
+      in_range |= static_cast<std::uint64_t>(dx * dx + dy * dy <= r2) << m;
+    }
+    for (; in_range != 0; in_range &= in_range - 1) visit(mobile_ids_[static_cast<std::size_t>(std::countr_zero(in_range))]);
     return;
   }
   // The index may be stale: widen the search by how far any node can have moved since it

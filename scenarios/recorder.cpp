@@ -33,6 +33,24 @@ void Recorder::assign_sensors(const std::vector<Vec2>& robots, std::vector<std::
   const std::size_t n_sensors = world_.sensor_count();
   nearest.assign(n_sensors, 0);
   if (robots.empty()) return;
+  if (robots.size() <= kScanRobots) {
+    // A few robots: test them all (the grid's arithmetic, ties to the lower index).
+    for (std::size_t s = 0; s < n_sensors; ++s) {
+      const Vec2 p = world_.def().sensors[s].position;
+      double best_d2 = std::numeric_limits<double>::infinity();
+      std::uint32_t best = 0;
+      for (std::uint32_t i = 0; i < robots.size(); ++i) {
+        const double ddx = robots[i].x() - p.x(), ddy = robots[i].y() - p.y();
+        const double d2 = ddx * ddx + ddy * ddy;
+        if (d2 < best_d2) {
+          best_d2 = d2;
+          best = i;
+        }
+      }
+      nearest[s] = best;
+    }
+    return;
+  }
   std::vector<sim::NodeId> ids;
   for (std::uint32_t i = 0; i < robots.size(); ++i) ids.push_back(sim::node_id(i));
   net::SpatialGrid grid;

@@ -73,8 +73,10 @@ class Recorder final : public agents::WorldObserver {
     double radius;
     Vec2 target;
   };
-  /// Nearest robot of every sensor now (ties: lower index), from a grid over robot positions.
+  /// Nearest robot of every sensor now (ties: lower index): a scan over few robots, else a grid.
   void assign_sensors(const std::vector<Vec2>& robots, std::vector<std::uint32_t>& nearest) const;
+  /// Up to this many robots a plain scan beats building a grid per sample.
+  static constexpr std::size_t kScanRobots = 32;
 
   agents::World& world_;
   const ScenarioDef& def_;
