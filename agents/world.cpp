@@ -325,11 +325,6 @@ protocols::RobotCell World::oracle_cell(std::size_t robot) {
 std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
                                      protocols::CentroidAccumulator& accumulator) {
   if (cell.empty()) return 0;
-  Vec2 lo = cell.vertices[0], hi = cell.vertices[0];
-  for (const Vec2& v : cell.vertices) {
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
   std::uint32_t inside = 0;
   const std::size_t first_sensor = robots_.size();
   auto take = [&](NodeId id, const Vec2& s) {
@@ -339,6 +334,11 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
   };
   if (!sensor_lines_.empty()) slicer_.reset(cell);
   if (sensor_lines_.empty() || !slicer_.valid()) {  // no rows, or not a proper polygon
+    Vec2 lo = cell.vertices[0], hi = cell.vertices[0];
+    for (const Vec2& v : cell.vertices) {
+      lo = lo.cwiseMin(v);
+      hi = hi.cwiseMax(v);
+    }
     sensor_grid_.for_each_within(0.5 * (lo + hi), 0.5 * (hi - lo).norm(), [&](NodeId id, const Vec2& s, double) {
       if (protocols::contains(cell, s)) take(id, s);
     });

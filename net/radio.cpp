@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/free_slots.hpp"
 #include "sim/random.hpp"
 
 namespace masnet::net {
@@ -262,15 +263,7 @@ void Radio::kill(NodeId id) {  // the battery is empty
   if (listener_) listener_->on_battery_empty(id);
 }
 
-std::uint32_t Radio::new_flight() {
-  if (!free_flights_.empty()) {
-    const std::uint32_t flight = free_flights_.back();
-    free_flights_.pop_back();
-    return flight;
-  }
-  flights_.emplace_back();
-  return static_cast<std::uint32_t>(flights_.size() - 1);
-}
+std::uint32_t Radio::new_flight() { return sim::reuse_or_append(free_flights_, flights_); }
 
 bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& payload, double destination_distance) {
   if (index_dirty_) prepare_index();
@@ -506,14 +499,7 @@ void Radio::schedule_delivery(std::uint32_t flight, sim::Time arrival) {
     batches_[open_batch_].push_back(flight);
     return;
   }
-  std::uint32_t batch;
-  if (!free_batches_.empty()) {
-    batch = free_batches_.back();
-    free_batches_.pop_back();
-  } else {
-    batch = static_cast<std::uint32_t>(batches_.size());
-    batches_.emplace_back();
-  }
+  const std::uint32_t batch = sim::reuse_or_append(free_batches_, batches_);
   batches_[batch].assign(1, flight);
   const sim::EventId event = simulator_.at(arrival, [this, batch] { run_batch(batch); });
   open_batch_ = batch;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "sim/event_action.hpp"
+#include "sim/free_slots.hpp"
 
 namespace masnet::sim {
 
@@ -37,14 +38,7 @@ class EventQueue {
 
   /// Adds `action` at `time_ns`. Precondition: time_ns >= the time of the last pop.
   EventId push(std::int64_t time_ns, const EventAction& action) {
-    std::uint32_t slot;
-    if (!free_.empty()) {
-      slot = free_.back();
-      free_.pop_back();
-    } else {
-      slot = static_cast<std::uint32_t>(slots_.size());
-      slots_.emplace_back();
-    }
+    const std::uint32_t slot = reuse_or_append(free_, slots_);
     const std::uint64_t sequence = next_sequence_++;
     slots_[slot] = Slot{action, sequence};
     place(Key{static_cast<std::uint64_t>(time_ns), slot});
