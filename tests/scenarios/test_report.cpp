@@ -13,6 +13,7 @@
 
 #include "scenarios/figures.hpp"
 #include "scenarios/report.hpp"
+#include "headless_chromium.hpp"
 #include "short_run.hpp"
 #include "text_files.hpp"
 
@@ -166,8 +167,7 @@ TEST_CASE(
 
 TEST_CASE("The report opens in headless Chromium without errors and draws its charts",
           "[scenarios][chromium]") {
-  const fs::path chromium = "/usr/bin/chromium";
-  if (!fs::exists(chromium)) {
+  if (!fs::exists(masnet::test::kChromium)) {
     WARN("skipped: /usr/bin/chromium is absent (apt-get install chromium)");
     return;
   }
@@ -177,20 +177,12 @@ TEST_CASE("The report opens in headless Chromium without errors and draws its ch
   }
   const ShortRun& run = short_run();
   REQUIRE(run.status == 0);
-  const fs::path profile = run.base / "chromium-profile", dom = run.base / "dom.html",
-                 log = run.base / "chromium.log", shot = run.base / "screenshot.png";
-  const std::string command = fmt::format(
-      "timeout 120 '{}' --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
-      "--disable-background-networking --disable-component-update --disable-sync "
-      "--user-data-dir='{}' "
-      "--enable-logging=stderr --v=0 --window-size=1200,2000 --screenshot='{}' --dump-dom "
-      "'file://{}' > '{}' 2> '{}'",
-      chromium.string(), profile.string(), shot.string(),
-      fs::absolute(run.dir / "report.html").string(), dom.string(), log.string());
-  const int status = std::system(command.c_str());
-  const std::string page = slurp(dom), messages = slurp(log);
+  const fs::path shot = run.base / "screenshot.png";
+  const masnet::test::HeadlessPage opened = masnet::test::open_headless(run.dir / "report.html", run.base, shot);
+  const std::string& page = opened.dom;
+  const std::string& messages = opened.log;
   INFO(messages.substr(0, 4000));
-  REQUIRE(status == 0);
+  REQUIRE(opened.status == 0);
   CHECK(page.find("<title>masnet report: acoustic_tracking (seed 1)</title>") != std::string::npos);
   // The page's own error trap stayed empty and hidden, and the chart code ran to its end.
   CHECK(page.find("<pre id=\"page-errors\" hidden=\"\"></pre>") != std::string::npos);

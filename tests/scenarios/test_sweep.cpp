@@ -19,6 +19,7 @@
 #include "scenarios/sweep.hpp"
 #include "scenarios/sweep_command.hpp"
 #include "scenarios/sweep_report.hpp"
+#include "headless_chromium.hpp"
 #include "text_files.hpp"
 
 using namespace masnet::scenarios;
@@ -611,8 +612,7 @@ TEST_CASE("masnet sweep: same runs table with --jobs 1, --jobs 2 and mpirun -np 
 
 TEST_CASE("The sweep report draws its charts in headless Chromium without script errors",
           "[scenarios][chromium]") {
-  const fs::path chromium = "/usr/bin/chromium";
-  if (!fs::exists(chromium)) {
+  if (!fs::exists(masnet::test::kChromium)) {
     WARN("skipped: /usr/bin/chromium is absent (apt-get install chromium)");
     return;
   }
@@ -641,16 +641,11 @@ TEST_CASE("The sweep report draws its charts in headless Chromium without script
   const fs::path base = fresh_dir("chromium");
   fs::create_directories(base);
   write_file(base / "report.html", html);
-  const std::string command = fmt::format(
-      "timeout 120 '{}' --headless --no-sandbox --disable-gpu --no-first-run "
-      "--disable-background-networking "
-      "--user-data-dir='{}' --enable-logging=stderr --v=0 --dump-dom 'file://{}' > '{}' 2> '{}'",
-      chromium.string(), (base / "profile").string(), (base / "report.html").string(),
-      (base / "dom.html").string(), (base / "chromium.log").string());
-  const int status = std::system(command.c_str());
-  const std::string dom = slurp(base / "dom.html"), log = slurp(base / "chromium.log");
+  const masnet::test::HeadlessPage opened = masnet::test::open_headless(base / "report.html", base);
+  const std::string& dom = opened.dom;
+  const std::string& log = opened.log;
   INFO(log.substr(0, 4000));
-  REQUIRE(status == 0);
+  REQUIRE(opened.status == 0);
   CHECK(log.find("Uncaught") == std::string::npos);
   CHECK(dom.find("<body data-charts=\"4\">") != std::string::npos);
   fs::remove_all(base);
