@@ -4,33 +4,73 @@
 
 namespace masnet::agents {
 
-AxisState damped_spring(double k, double k_v, double x0, double v0, double t) {
+namespace {
+// The parts of damped_spring's closed form that depend on (k, k_v, t) only: the two axes of a
+// robot share one exp (and cos, sin), so a position costs one set of calls, not two.
+struct SpringFactors {
+  enum class Kind { free, friction, critical, under, over } kind = Kind::free;
+  double t = 0.0, a = 0.0, w = 0.0, r1 = 0.0, r2 = 0.0;  // rates
+  double e = 0.0, c = 0.0, s = 0.0, e2 = 0.0;             // at t
+};
+
+SpringFactors spring_factors(double k, double k_v, double t) {
+  SpringFactors f;
+  f.t = t;
   if (k == 0.0) {
-    if (k_v == 0.0) return {x0 + v0 * t, v0};
-    const double decay = std::exp(-k_v * t);
-    return {x0 + v0 * (1.0 - decay) / k_v, v0 * decay};
+    f.kind = k_v == 0.0 ? SpringFactors::Kind::free : SpringFactors::Kind::friction;
+    if (k_v != 0.0) f.e = std::exp(-k_v * t);
+    return f;
   }
   const double disc = k_v * k_v - 4.0 * k;
-  const double a = -0.5 * k_v;
+  f.a = -0.5 * k_v;
   // Near critical damping both textbook forms lose digits; the critical form is exact there
   // and its error for |disc| below the threshold is far under 1e-12 over the times we use.
   if (std::fabs(disc) <= 1e-12 * (k_v * k_v + 4.0 * k)) {
-    const double e = std::exp(a * t);
-    const double b = v0 - a * x0;
-    return {(x0 + b * t) * e, (a * (x0 + b * t) + b) * e};
+    f.kind = SpringFactors::Kind::critical;
+    f.e = std::exp(f.a * t);
+  } else if (disc < 0.0) {  // underdamped: e^{at}(A cos ωt + B sin ωt)
+    f.kind = SpringFactors::Kind::under;
+    f.w = 0.5 * std::sqrt(-disc);
+    f.e = std::exp(f.a * t);
+    f.c = std::cos(f.w * t);
+    f.s = std::sin(f.w * t);
+  } else {  // overdamped: C1 e^{r1 t} + C2 e^{r2 t}
+    f.kind = SpringFactors::Kind::over;
+    const double root = 0.5 * std::sqrt(disc);
+    f.r1 = f.a + root;
+    f.r2 = f.a - root;
+    f.e = std::exp(f.r1 * t);
+    f.e2 = std::exp(f.r2 * t);
   }
-  if (disc < 0.0) {  // underdamped: e^{at}(A cos ωt + B sin ωt)
-    const double w = 0.5 * std::sqrt(-disc);
-    const double A = x0, B = (v0 - a * x0) / w;
-    const double e = std::exp(a * t), c = std::cos(w * t), s = std::sin(w * t);
-    return {e * (A * c + B * s), e * ((a * A + w * B) * c + (a * B - w * A) * s)};
+  return f;
+}
+
+AxisState apply(const SpringFactors& f, double k_v, double x0, double v0) {
+  const double t = f.t, a = f.a, w = f.w;
+  switch (f.kind) {
+    case SpringFactors::Kind::free:
+      return {x0 + v0 * t, v0};
+    case SpringFactors::Kind::friction:
+      return {x0 + v0 * (1.0 - f.e) / k_v, v0 * f.e};
+    case SpringFactors::Kind::critical: {
+      const double b = v0 - a * x0;
+      return {(x0 + b * t) * f.e, (a * (x0 + b * t) + b) * f.e};
+    }
+    case SpringFactors::Kind::under: {
+      const double A = x0, B = (v0 - a * x0) / w;
+      return {f.e * (A * f.c + B * f.s), f.e * ((a * A + w * B) * f.c + (a * B - w * A) * f.s)};
+    }
+    case SpringFactors::Kind::over:
+      break;
   }
-  // overdamped: C1 e^{r1 t} + C2 e^{r2 t}
-  const double root = 0.5 * std::sqrt(disc);
-  const double r1 = a + root, r2 = a - root;
+  const double r1 = f.r1, r2 = f.r2;
   const double c1 = (v0 - r2 * x0) / (r1 - r2), c2 = x0 - c1;
-  const double e1 = std::exp(r1 * t), e2 = std::exp(r2 * t);
-  return {c1 * e1 + c2 * e2, c1 * r1 * e1 + c2 * r2 * e2};
+  return {c1 * f.e + c2 * f.e2, c1 * r1 * f.e + c2 * r2 * f.e2};
+}
+}  // namespace
+
+AxisState damped_spring(double k, double k_v, double x0, double v0, double t) {
+  return apply(spring_factors(k, k_v, t), k_v, x0, v0);
 }
 
 MotionSegment::MotionSegment(const MotionParams& params, double t0_s, const MotionState& start,
@@ -78,8 +118,9 @@ MotionState MotionSegment::state_at(double t_s) const {
   if (dt <= 0.0) return start_;
   if (params_.max_speed <= 0.0) {
     const Vec2 x0 = start_.position - target_;
-    const AxisState ax = damped_spring(params_.k, params_.k_v, x0.x(), start_.velocity.x(), dt);
-    const AxisState ay = damped_spring(params_.k, params_.k_v, x0.y(), start_.velocity.y(), dt);
+    const SpringFactors factors = spring_factors(params_.k, params_.k_v, dt);
+    const AxisState ax = apply(factors, params_.k_v, x0.x(), start_.velocity.x());
+    const AxisState ay = apply(factors, params_.k_v, x0.y(), start_.velocity.y());
     return MotionState{target_ + Vec2{ax.x, ay.x}, Vec2{ax.v, ay.v}};
   }
   // Substeps on a grid anchored at the segment start, so the result does not depend on when

@@ -76,38 +76,43 @@ class LineIndex {
     const double min_sure_half = radius * kMinSureHalf;
     // Two passes over batches of lines: first the estimates, with prefetches of the memory each
     // line will touch (on large networks every line is a cache miss: overlapping them is most of
-    // the cost), then the exact steps where the estimate is not sure.
-    struct Pending {
-      std::uint32_t line, a, c;
-      bool sure;
-      double dy2;
-    };
+    // the cost), then the exact steps where the estimate is not sure. A sure line leaves only
+    // its run; the others also their line and dy² (bit i of `unsure` marks entry i).
     constexpr std::size_t kBatch = 32;
-    Pending pending[kBatch];
+    std::uint32_t run_a[kBatch], run_c[kBatch], unsure_line[kBatch];
+    double unsure_dy2[kBatch];
+    const double y_top = cy + radius + slack;
+    const std::size_t line_count = lines_.size();
     std::size_t l = lo;
-    while (l < lines_.size() && lines_[l].y <= cy + radius + slack) {
+    while (l < line_count && lines_[l].y <= y_top) {
       std::size_t n = 0;
-      for (; n < kBatch && l < lines_.size() && lines_[l].y <= cy + radius + slack; ++l) {
+      std::uint32_t unsure = 0;
+      for (; n < kBatch && l < line_count && lines_[l].y <= y_top; ++l) {
         const Line& line = lines_[l];
         const double ddy = line.y - cy, dy2 = ddy * ddy;
         if (dy2 > r2) continue;
         const double half = std::sqrt(r2 - dy2);
         std::uint32_t a, c;
-        const bool sure = sure_estimates && line.even && half >= min_sure_half && sure_run(line, cx, half, a, c);
-        if (!sure) {  // starting points only: the steps below are exact
+        if (!(sure_estimates && line.even && half >= min_sure_half && sure_run(line, cx, half, a, c))) {
+          // Starting points only: the steps below are exact.
           a = estimate(line, cx - half, true);
           c = estimate(line, cx + half, false);
           __builtin_prefetch(xs + (a > line.begin ? a - 1 : a));
           __builtin_prefetch(xs + (c < line.end ? c : c - 1));
+          unsure |= std::uint32_t{1} << n;
+          unsure_line[n] = static_cast<std::uint32_t>(l);
+          unsure_dy2[n] = dy2;
         }
         prefetch(a, c);
-        pending[n++] = Pending{static_cast<std::uint32_t>(l), a, c, sure, dy2};
+        run_a[n] = a;
+        run_c[n] = c;
+        ++n;
       }
       for (std::size_t i = 0; i < n; ++i) {
-        std::uint32_t a = pending[i].a, c = pending[i].c;
-        if (!pending[i].sure) {
-          const Line& line = lines_[pending[i].line];
-          const double dy2 = pending[i].dy2;
+        std::uint32_t a = run_a[i], c = run_c[i];
+        if ((unsure >> i) & 1u) {
+          const Line& line = lines_[unsure_line[i]];
+          const double dy2 = unsure_dy2[i];
           auto inside = [&](std::uint32_t k) {
             const double ddx = xs[k] - cx;
             return ddx * ddx + dy2 <= r2;

@@ -91,6 +91,9 @@ struct Frame {
   std::uint32_t size_bytes = 0;
   double range = 0.0;  ///< world units, after the max_range cap
   sim::Time sent_at{};
+  /// The sender's count of frames before this one: (source, number) names a transmission, so
+  /// a receiver-side cache can tell one SENSE from the next.
+  std::uint64_t number = 0;
   Payload payload;
 
   bool is_broadcast() const { return destination == sim::kNoNode; }

@@ -460,6 +460,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   f.frame.size_bytes = bytes;
   f.frame.range = range;
   f.frame.sent_at = now;
+  f.frame.number = frame_number;
   f.frame.payload = std::move(payload);
   if (receivers.size() == 1) {
     f.only = receivers[0];

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tuple>
 #include <numbers>
 
 #include "sim/assert.hpp"
@@ -593,8 +594,7 @@ bool contains(std::span<const Vec2> v, const Vec2& point) {
 
 bool contains(const ConvexPolygon& polygon, const Vec2& point) { return contains(std::span<const Vec2>(polygon.vertices), point); }
 
-void RowSlicer::reset(const ConvexPolygon& polygon) {
-  const std::vector<Vec2>& v = polygon.vertices;
+void RowSlicer::reset(std::span<const Vec2> v) {
   const std::size_t n = v.size();
   left_.edges.clear();
   right_.edges.clear();
@@ -630,6 +630,31 @@ void RowSlicer::reset(const ConvexPolygon& polygon) {
   for (std::size_t i = left_start, k = 0; k < n && v[i].y() < y_max_; i = prev(i), ++k) add(left_, v[i], v[prev(i)]);
   // Zero height breaks ConvexPolygon's promise; the caller falls back to contains().
   if (right_.edges.empty() || left_.edges.empty()) valid_ = false;
+}
+
+void ConvexMembership::reset(std::span<const Vec2> vertices) {
+  vertices_.assign(vertices.begin(), vertices.end());
+  slicer_.reset(vertices_);
+  row_valid_ = false;
+}
+
+bool ConvexMembership::contains(const Vec2& point) {
+  if (!slicer_.valid()) return protocols::contains(vertices_, point);
+  const double x = point.x(), y = point.y();
+  // Strictly below the lowest vertex or above the highest: outside, as the exact test says.
+  if (y < slicer_.y_min() || y > slicer_.y_max()) return false;
+  if (!row_valid_ || y != row_y_) {
+    if (row_valid_ && y < row_y_) slicer_.rewind();
+    std::tie(left_, right_) = slicer_.extent(y);
+    row_y_ = y;
+    row_valid_ = true;
+  }
+  // Each end is within margin() of the exact one: farther than that inside both is inside,
+  // beyond either is outside; the rest (and NaN) is decided exactly.
+  const double margin = slicer_.margin();
+  if (x >= left_ + margin && x <= right_ - margin) return true;
+  if (x < left_ - margin || x > right_ + margin) return false;
+  return protocols::contains(vertices_, point);
 }
 
 bool is_gabriel_neighbour(const Vec2& a, const Vec2& b, std::span<const Vec2> others) {

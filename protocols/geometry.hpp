@@ -134,8 +134,13 @@ bool contains(std::span<const Vec2> vertices, const Vec2& point);
 /// the exact test.
 class RowSlicer {
  public:
-  /// Starts on `polygon` (CCW, as ConvexPolygon promises); the polygon must outlive the walk.
-  void reset(const ConvexPolygon& polygon);
+  /// Starts on `polygon` (CCW, as ConvexPolygon promises). The slicer keeps its own copy of
+  /// what it needs.
+  void reset(const ConvexPolygon& polygon) { reset(std::span<const Vec2>(polygon.vertices)); }
+  /// The same for the vertices of a convex polygon held elsewhere (e.g. in a message).
+  void reset(std::span<const Vec2> vertices);
+  /// Back to the bottom: the next extent() may ask for any height again.
+  void rewind() { left_.at = right_.at = 0; }
   /// False for fewer than 3 vertices or zero height (not a ConvexPolygon: use contains()).
   bool valid() const { return valid_; }
   double y_min() const { return y_min_; }
@@ -143,7 +148,8 @@ class RowSlicer {
   /// Bound on |computed end − exact end| for every extent(); +inf for absurd input (a slope
   /// that overflows), which sends every point to the exact test.
   double margin() const { return margin_; }
-  /// {left, right} ends at height y, for y in [y_min, y_max], never below the previous call's.
+  /// {left, right} ends at height y, for y in [y_min, y_max], never below the previous call's
+  /// (since reset() or rewind()).
   std::pair<double, double> extent(double y) { return {left_.x(y), right_.x(y)}; }
 
  private:
@@ -162,6 +168,22 @@ class RowSlicer {
   Chain left_, right_;
   double y_min_ = 0.0, y_max_ = 0.0, margin_ = 0.0;
   bool valid_ = false;
+};
+
+/// contains() for many points against one convex polygon (CCW, as ConvexPolygon promises),
+/// always with contains()'s answer but at a fraction of its cost when the points come row by
+/// row (a SENSE reaches its sensors in id order, row after row): each height's extent is taken
+/// once from a RowSlicer, and only points within its margin of an end take the exact test.
+class ConvexMembership {
+ public:
+  void reset(std::span<const Vec2> vertices);
+  bool contains(const Vec2& point);
+
+ private:
+  std::vector<Vec2> vertices_;  // for the exact test near the ends
+  RowSlicer slicer_;
+  double row_y_ = 0.0, left_ = 0.0, right_ = 0.0;
+  bool row_valid_ = false;
 };
 
 /// Sign of the cross product (b − a) × (c − a), computed exactly: +1 when c is left of the

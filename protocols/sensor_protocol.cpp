@@ -5,7 +5,12 @@ namespace masnet::protocols {
 void SensorProtocol::on_frame(SensorHost& host, SensorState& state, const net::Frame& frame) const {
   if (const auto* sense = std::get_if<net::Sense>(&frame.payload)) {
     // Answer only if this sensor lies inside the robot's cell (boundary included).
-    if (contains(std::span<const Vec2>(sense->cell), host.position()))
+    if (frame.source != sense_source_ || frame.number != sense_number_) {
+      sense_cell_.reset(sense->cell);
+      sense_source_ = frame.source;
+      sense_number_ = frame.number;
+    }
+    if (sense_cell_.contains(host.position()))
       host.unicast(sense->robot, net::Reading{host.id(), sense->update, host.position(), host.reading()});
   } else if (const auto* position = std::get_if<net::Position>(&frame.payload)) {
     // 2: each sensor finds its closest robot (ties: the lower id).

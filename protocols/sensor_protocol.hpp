@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "protocols/geometry.hpp"
 #include "protocols/host.hpp"
 
 namespace masnet::protocols {
@@ -28,6 +29,11 @@ class SensorProtocol {
 
  private:
   double report_delay_s_;
+  // A SENSE reaches its hearers one after another: its cell is prepared once for all of them
+  // (the answers are contains()'s). Keyed by the frame's name, (source, number).
+  mutable ConvexMembership sense_cell_;
+  mutable NodeId sense_source_ = sim::kNoNode;
+  mutable std::uint64_t sense_number_ = 0;
 };
 
 }  // namespace masnet::protocols

@@ -695,3 +695,52 @@ TEST_CASE("The row slicer's ends are within its margin of the exact ones on rand
   slicer.reset(ConvexPolygon{{Vec2{0, 0.5}, Vec2{1, 0.5}, Vec2{0.5, 0.5}}});
   CHECK_FALSE(slicer.valid());
 }
+
+TEST_CASE("Convex membership answers exactly as contains() for points in rows, in any order and on the boundary",
+          "[protocols]") {
+  // The prepared test decides most points from a row's extent and its margin; a wrong margin,
+  // a stale row or a chain not rewound when rows go down would disagree with the exact test
+  // somewhere among these: sensor rows in id order, the same points shuffled, every vertex,
+  // points on edges and one ulp either side of them.
+  Rng rng(5);
+  std::vector<ConvexPolygon> polygons{geo::rectangle(0.1, 0.2, 0.7, 0.9),
+                                      ConvexPolygon{{Vec2{0, 0.5}, Vec2{1, 0.5 + 1e-9}, Vec2{0.2, 0.5 + 3e-9}}},
+                                      ConvexPolygon{{Vec2{0, 0}, Vec2{1, 1}}},                      // not a polygon
+                                      ConvexPolygon{{Vec2{0, 0.5}, Vec2{1, 0.5}, Vec2{0.5, 0.5}}}};  // no height
+  for (int set = 0; set < 20; ++set) {
+    std::vector<Vec2> sites;
+    for (int i = 0; i < 10; ++i) sites.push_back(Vec2{rng.uniform(), rng.uniform()});
+    for (const Cell& cell : geo::voronoi_cells(sites, geo::rectangle(0, 0, 1, 1))) polygons.push_back(cell.polygon);
+  }
+  std::vector<Vec2> points;  // a 40 × 40 cell-centred grid, row by row
+  for (int j = 0; j < 40; ++j)
+    for (int i = 0; i < 40; ++i) points.push_back(Vec2{(i + 0.5) / 40, (j + 0.5) / 40});
+  std::vector<Vec2> shuffled = points;
+  std::shuffle(shuffled.begin(), shuffled.end(), rng.engine);
+  geo::ConvexMembership membership;
+  std::size_t inside = 0, boundary = 0;
+  for (const ConvexPolygon& polygon : polygons) {
+    std::vector<Vec2> edge_points;
+    const auto& v = polygon.vertices;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const Vec2 a = v[i], b = v[(i + 1) % v.size()];
+      for (const double t : {0.0, 0.25, 0.5}) {
+        const Vec2 p = a + t * (b - a);
+        edge_points.push_back(p);
+        edge_points.push_back(Vec2{std::nextafter(p.x(), -1.0), p.y()});
+        edge_points.push_back(Vec2{std::nextafter(p.x(), 2.0), p.y()});
+      }
+    }
+    membership.reset(polygon.vertices);
+    for (const std::vector<Vec2>* list : {&points, &shuffled, &edge_points, &points})
+      for (const Vec2& p : *list) {
+        const bool exact = geo::contains(polygon, p);
+        INFO("point (" << p.x() << ", " << p.y() << ") in a polygon of " << v.size() << " vertices");
+        REQUIRE(membership.contains(p) == exact);
+        inside += exact ? 1 : 0;
+        boundary += list == &edge_points && exact ? 1 : 0;
+      }
+  }
+  CHECK(inside > 10000);
+  CHECK(boundary > 1000);
+}

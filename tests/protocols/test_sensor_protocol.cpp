@@ -1,0 +1,57 @@
+#include <catch2/catch.hpp>
+
+#include <vector>
+
+#include "protocols/sensor_protocol.hpp"
+
+using namespace masnet;
+using net::Vec2;
+using sim::NodeId;
+
+namespace {
+
+// A sensor at a fixed position that records what it sends.
+struct FakeSensorHost final : protocols::SensorHost {
+  Vec2 at;
+  std::vector<NodeId> replied_to;
+  explicit FakeSensorHost(Vec2 position) : at(position) {}
+  NodeId id() const override { return sim::node_id(100); }
+  Vec2 position() const override { return at; }
+  double reading() override { return 1.0; }
+  std::uint32_t unicast(NodeId to, net::Payload) override {
+    replied_to.push_back(to);
+    return 1;
+  }
+  void set_timer(sim::Duration, std::uint32_t) override {}
+};
+
+net::Frame sense(std::uint32_t robot, std::uint64_t number, std::vector<Vec2> cell) {
+  net::Frame frame;
+  frame.source = sim::node_id(robot);
+  frame.type = net::MessageType::sense;
+  frame.number = number;
+  frame.payload = net::Sense{sim::node_id(robot), 1, std::move(cell)};
+  return frame;
+}
+
+}  // namespace
+
+TEST_CASE("a sensor answers every SENSE whose cell holds it, and only those, SENSE after SENSE",
+          "[protocols]") {
+  // The protocol prepares a SENSE's cell once for all its hearers: a reply must still follow
+  // each frame's own cell, whether the next frame comes from the same robot or another.
+  const std::vector<Vec2> left{Vec2{0, 0}, Vec2{0.5, 0}, Vec2{0.5, 1}, Vec2{0, 1}};
+  const std::vector<Vec2> right{Vec2{0.5, 0}, Vec2{1, 0}, Vec2{1, 1}, Vec2{0.5, 1}};
+  const protocols::SensorProtocol protocol(0.01);
+  protocols::SensorState state;
+  FakeSensorHost in_left(Vec2{0.25, 0.5}), on_edge(Vec2{0.5, 0.75});
+  for (FakeSensorHost* host : {&in_left, &on_edge}) {
+    protocol.on_frame(*host, state, sense(0, 7, left));
+    protocol.on_frame(*host, state, sense(0, 8, right));  // same robot, next frame
+    protocol.on_frame(*host, state, sense(1, 8, left));   // another robot, same number
+    protocol.on_frame(*host, state, sense(1, 9, std::vector<Vec2>{Vec2{0, 0}, Vec2{1, 0}}));  // no polygon
+  }
+  CHECK(in_left.replied_to == std::vector<NodeId>{sim::node_id(0), sim::node_id(1)});
+  // On the shared edge: inside both cells (the boundary belongs to each).
+  CHECK(on_edge.replied_to == std::vector<NodeId>{sim::node_id(0), sim::node_id(0), sim::node_id(1)});
+}
