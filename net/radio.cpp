@@ -286,9 +286,11 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   total_tx_j_ += tx_j;
   if (battery && params_.energy.idle_power_w > 0) schedule_depletion(source);
   const auto type_index = static_cast<std::size_t>(type);
+  // The sender's per-type counter is a cache miss on large networks: fetch it now, count the
+  // frame once the receivers are booked.
   TxCounter& sent = tx_[type_index * nodes_.size() + sim::index(source)];
-  ++sent.count;
-  sent.bytes += bytes;
+  __builtin_prefetch(&sent, 1);
+  if (!free_flights_.empty()) __builtin_prefetch(&flights_[free_flights_.back()], 1);  // likewise
   ++totals_[type_index].tx_count;
   totals_[type_index].tx_bytes += bytes;
   const std::uint64_t frame_number = src.frames_sent++;
@@ -365,10 +367,17 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
       pending_bulk_bytes_ += bytes;
     }
     const std::uint64_t heard_booking = bytes + (is_broadcast ? 0 : kOneOverheard);
-    // Prefetch the difference-array entries a bulk booking will update.
+    // Prefetch the difference-array entries a bulk booking will update (a broadcast also
+    // books its receptions by type).
     auto prefetch = [heard_diff](std::uint32_t a, std::uint32_t c) {
       __builtin_prefetch(heard_diff + a, 1);
       __builtin_prefetch(heard_diff + c, 1);
+    };
+    auto prefetch_all = [heard_diff, count_diff, bytes_diff](std::uint32_t a, std::uint32_t c) {
+      for (std::uint64_t* diff : {heard_diff, count_diff, bytes_diff}) {
+        __builtin_prefetch(diff + a, 1);
+        __builtin_prefetch(diff + c, 1);
+      }
     };
     if (bulk && !is_broadcast) {
       // Unicasts, the bulk of the traffic: overhearing is one packed word per run end. The
@@ -390,7 +399,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
         if (collect)
           for (std::uint32_t k = a; k < c; ++k)
             if (k != source_hot && (interest[k] & type_bit)) receivers.push_back(slots[k]);
-      }, prefetch);
+      }, prefetch_all);
     } else {
       line_index_.for_each_run_within(center, range, [&](std::uint32_t a, std::uint32_t c) {
         for (std::uint32_t k = a; k < c; ++k) {
@@ -406,7 +415,9 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
       diffs_pending_ = true;
       // The runs included the sender (and a static addressee): take them out again.
       for (const std::uint32_t hot : {source_hot, destination_hot}) {
-        if (hot >= static_count || !line_index_.within(hot, center, range)) continue;
+        // A static sender sits at the center (distance exactly 0): in every run of a valid
+        // range, and its coordinates need not be fetched to know it.
+        if (hot >= static_count || !(hot == source_hot ? range >= 0.0 : line_index_.within(hot, center, range))) continue;
         heard[hot] -= bytes;
         --hearers;
         if (is_broadcast) {
@@ -444,6 +455,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     else
       ++src.unreachable_count;
   }
+  ++sent.count;
+  sent.bytes += bytes;
   totals_[type_index].rx_count += received;
   totals_[type_index].rx_bytes += received * bytes;
   total_heard_bytes_ += hearers * bytes;
