@@ -263,6 +263,12 @@ void Radio::kill(NodeId id) {  // the battery is empty
   if (listener_) listener_->on_battery_empty(id);
 }
 
+void Radio::prefetch_flight(std::uint32_t flight) const {
+  const char* const record = reinterpret_cast<const char*>(&flights_[flight]);
+  for (std::size_t offset = 0; offset < sizeof(InFlight); offset += 64) __builtin_prefetch(record + offset);
+  __builtin_prefetch(record + sizeof(InFlight) - 1);
+}
+
 std::uint32_t Radio::new_flight() { return sim::reuse_or_append(free_flights_, flights_); }
 
 bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& payload, double destination_distance) {
@@ -290,7 +296,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   // frame once the receivers are booked.
   TxCounter& sent = tx_[type_index * nodes_.size() + sim::index(source)];
   __builtin_prefetch(&sent, 1);
-  if (!free_flights_.empty()) __builtin_prefetch(&flights_[free_flights_.back()], 1);  // likewise
+  if (!free_flights_.empty()) prefetch_flight(free_flights_.back());  // likewise
   ++totals_[type_index].tx_count;
   totals_[type_index].tx_bytes += bytes;
   const std::uint64_t frame_number = src.frames_sent++;
@@ -526,7 +532,7 @@ void Radio::run_batch(std::uint32_t batch) {
   // By index: deliveries may schedule new batches, which can reallocate batches_.
   for (std::size_t i = 0; i < batches_[batch].size(); ++i) {
     // The frames were written a while ago: fetch the next ones' records while this one is handled.
-    if (i + kDeliveryLookahead < batches_[batch].size()) __builtin_prefetch(&flights_[batches_[batch][i + kDeliveryLookahead]]);
+    if (i + kDeliveryLookahead < batches_[batch].size()) prefetch_flight(batches_[batch][i + kDeliveryLookahead]);
     deliver(batches_[batch][i]);
   }
   free_batches_.push_back(batch);

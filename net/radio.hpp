@@ -201,6 +201,8 @@ class Radio {
   void schedule_delivery(std::uint32_t flight, sim::Time arrival);
   void run_batch(std::uint32_t batch);
   std::uint32_t new_flight();
+  /// Fetches the cache lines of a flight record (delivery reads its frame and receivers).
+  void prefetch_flight(std::uint32_t flight) const;
 
   sim::Simulator& simulator_;
   RadioParams params_;
