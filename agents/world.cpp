@@ -350,33 +350,47 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
   // coordinates it will read (on large networks each row is a cache miss: overlapping them is
   // most of the cost), then the exact ends and the readings.
   const double margin = slicer_.margin();
+  // On evenly spaced rows the sensors between xl + margin and xr − margin come from O(1) slot
+  // estimates when no sensor is near either end (LineIndex::sure_slots): all of them are inside,
+  // and the guard of 2·margin puts every other sensor beyond the exact ends, outside.
+  const bool sure_rows = sensor_lines_.slot_estimates_are_sure(slicer_.max_abs_x() + 2.0 * margin, 2.0 * margin);
   pending_rows_.clear();
   sensor_lines_.for_each_line_between(slicer_.y_min(), slicer_.y_max(), [&](std::size_t line, double y, std::uint32_t begin, std::uint32_t end) {
     const auto [xl, xr] = slicer_.extent(y);
     if (!(xl <= xr + 2.0 * margin)) return;
-    // The exact search starts one slot before the guess and ends one past the right end.
-    const std::uint32_t a = sensor_lines_.guess_at_or_after(line, xl - margin);
-    const std::uint32_t c = sensor_lines_.guess_at_or_after(line, xr);
+    PendingRow row{line, y, xl, xr, 0, 0, false};
+    std::uint32_t a, c;
+    if (sure_rows && xl + margin <= xr - margin && sensor_lines_.sure_slots(line, xl + margin, xr - margin, a, c)) {
+      row.first = a;
+      row.last = c;
+      row.sure = true;
+    } else {  // the exact search starts one slot before the guess and ends one past the right end
+      a = sensor_lines_.guess_at_or_after(line, xl - margin);
+      c = sensor_lines_.guess_at_or_after(line, xr);
+    }
     __builtin_prefetch(&sensor_lines_.x(a > begin ? a - 1 : begin));
     __builtin_prefetch(&sensor_lines_.x(c < end ? c : end - 1));
-    pending_rows_.push_back(PendingRow{line, y, xl, xr});
+    pending_rows_.push_back(row);
   });
   const bool row_wise = def_.sensor_noise_sigma <= 0.0 && uniform_sensor_area_ > 0.0 && !diffusion_;
   const std::optional<double> uniform = field_.uniform_value();
   const std::vector<NodeId>& ids = sensor_lines_.ids();
   for (const PendingRow& row : pending_rows_) {
     const double y = row.y, xl = row.left, xr = row.right;
-    // Candidates: x in [xl − margin, xr + margin] (and a hair more on the right, tested).
-    std::uint32_t first = sensor_lines_.first_at_or_after(row.line, xl - margin);
-    std::uint32_t last = sensor_lines_.first_at_or_after(row.line, xr + 2.0 * margin);
-    auto inside_at = [&](std::uint32_t k) {
-      const double x = sensor_lines_.x(k);
-      return (x >= xl + margin && x <= xr - margin) || protocols::contains(cell, Vec2{x, y});
-    };
-    // Exact at the ends; everything between is inside (convexity).
-    while (first < last && !inside_at(first)) ++first;
-    while (last > first && !inside_at(last - 1)) --last;
-    if (first == last) continue;
+    std::uint32_t first = row.first, last = row.last;
+    if (!row.sure) {
+      // Candidates: x in [xl − margin, xr + margin] (and a hair more on the right, tested).
+      first = sensor_lines_.first_at_or_after(row.line, xl - margin);
+      last = sensor_lines_.first_at_or_after(row.line, xr + 2.0 * margin);
+      auto inside_at = [&](std::uint32_t k) {
+        const double x = sensor_lines_.x(k);
+        return (x >= xl + margin && x <= xr - margin) || protocols::contains(cell, Vec2{x, y});
+      };
+      // Exact at the ends; everything between is inside (convexity).
+      while (first < last && !inside_at(first)) ++first;
+      while (last > first && !inside_at(last - 1)) --last;
+    }
+    if (first >= last) continue;
     // Without noise and with equal areas a reading needs only the position: evaluate the row in
     // one call and stream through its coordinates, never touching per-sensor records.
     if (row_wise && uniform) {

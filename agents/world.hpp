@@ -153,6 +153,8 @@ class World final : public net::RadioListener, public net::MobilePositions {
   struct PendingRow {
     std::size_t line;
     double y, left, right;
+    std::uint32_t first, last;  // the row's sensors, when `sure`
+    bool sure;
   };
   std::vector<PendingRow> pending_rows_;
   std::unique_ptr<DiffusionField> diffusion_;

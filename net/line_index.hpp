@@ -56,6 +56,28 @@ class LineIndex {
     return ddx * ddx + ddy * ddy <= radius * radius;
   }
 
+  /// Whether sure_slots() may be used for intervals whose ends lie within [−extent, extent] and
+  /// whose points must moreover be more than `guard` (world units) from either end: a bound on
+  /// the rounding of the slot estimates, and the guard, both well below the sure margin.
+  bool slot_estimates_are_sure(double extent, double guard) const {
+    const double rounding = 1e-8 + kUlp * (max_inv_dx_ * 16.0 * (extent + max_abs_x_) +
+                                           4.0 * (static_cast<double>(max_even_count_) + 2.0));
+    return rounding <= 0.25 * kSureMargin && guard * max_inv_dx_ <= 0.25 * kSureMargin;  // false on NaN
+  }
+  /// The slots [a, c) of `line` whose x lie in [lo, hi], from O(1) estimates, when the line is
+  /// evenly spaced and both ends lie at least kSureMargin (in slots) from every point; false
+  /// otherwise. Call only when slot_estimates_are_sure(extent, guard) holds for the ends: every
+  /// point outside [a, c) is then also more than `guard` outside [lo, hi].
+  bool sure_slots(std::size_t line, double lo, double hi, std::uint32_t& a, std::uint32_t& c) const {
+#if defined(__SSE2__)
+    const Line& l = lines_[line];
+    return l.even && sure_slots_of_ends(l, _mm_set_pd(hi, lo), a, c);
+#else
+    (void)line, (void)lo, (void)hi, (void)a, (void)c;
+    return false;
+#endif
+  }
+
   /// Calls `visit(begin, end)` for each run of slots [begin, end) whose points lie within
   /// `radius` of `center` (inclusive), one run per line crossed. `prefetch(a, c)` (optional) is
   /// told every line's estimated run first, so the caller can prefetch what it will touch there.
@@ -176,7 +198,13 @@ class LineIndex {
 #if !defined(__SSE2__)
     return false;  // the exact steps do it all
 #else
-    const __m128d ends = _mm_add_pd(_mm_set1_pd(cx), _mm_mul_pd(_mm_set1_pd(half), _mm_set_pd(1.0, -1.0)));
+    return sure_slots_of_ends(line, _mm_add_pd(_mm_set1_pd(cx), _mm_mul_pd(_mm_set1_pd(half), _mm_set_pd(1.0, -1.0))), a, c);
+#endif
+  }
+#if defined(__SSE2__)
+  /// The slots [a, c) of an evenly spaced line between ends = {left, right}, if both lie at least
+  /// kSureMargin from a slot.
+  static bool sure_slots_of_ends(const Line& line, __m128d ends, std::uint32_t& a, std::uint32_t& c) {
     __m128d k = _mm_mul_pd(_mm_sub_pd(ends, _mm_set1_pd(line.x0)), _mm_set1_pd(line.inv_dx));
     // Clamped to the line (a chord end beyond it is half a slot past the end slot), then
     // shifted by one: truncation is then floor, and floor(k + 1) = ceil(k) = floor(k) + 1 for
@@ -190,8 +218,8 @@ class LineIndex {
     a = line.begin + static_cast<std::uint32_t>(_mm_cvtsi128_si32(slots));
     c = line.begin + static_cast<std::uint32_t>(_mm_cvtsi128_si32(_mm_shuffle_epi32(slots, 1)));
     return true;
-#endif
   }
+#endif
 
   /// The first line with y >= value (the line count if none). Evenly spaced lines (a grid's
   /// rows) start from an O(1) estimate; the steps make it exact either way.

@@ -621,6 +621,7 @@ void RowSlicer::reset(std::span<const Vec2> v) {
   // The slope form x0 + (y − y0)·slope has (y − y0)·slope within a few ulps of the edge's Δx
   // (0 <= y − y0 <= Δy), so every end is within a few ulps of max |x|; 64 ulps is ample.
   margin_ = 64.0 * std::numeric_limits<double>::epsilon() * largest_x + std::numeric_limits<double>::denorm_min();
+  max_abs_x_ = largest_x;
   auto add = [this](Chain& chain, const Vec2& a, const Vec2& b) {
     const double slope = (b.x() - a.x()) / (b.y() - a.y());
     if (!std::isfinite(slope)) margin_ = std::numeric_limits<double>::infinity();

@@ -148,6 +148,8 @@ class RowSlicer {
   /// Bound on |computed end − exact end| for every extent(); +inf for absurd input (a slope
   /// that overflows), which sends every point to the exact test.
   double margin() const { return margin_; }
+  /// The largest |x| of a vertex: every extent() end lies within margin() of [−it, it].
+  double max_abs_x() const { return max_abs_x_; }
   /// {left, right} ends at height y, for y in [y_min, y_max], never below the previous call's
   /// (since reset() or rewind()).
   std::pair<double, double> extent(double y) { return {left_.x(y), right_.x(y)}; }
@@ -166,7 +168,7 @@ class RowSlicer {
     }
   };
   Chain left_, right_;
-  double y_min_ = 0.0, y_max_ = 0.0, margin_ = 0.0;
+  double y_min_ = 0.0, y_max_ = 0.0, margin_ = 0.0, max_abs_x_ = 0.0;
   bool valid_ = false;
 };
 

@@ -128,9 +128,11 @@ TEST_CASE("the oracle's scanline pass selects exactly the sensors an exact point
   // centroid the one sensor-by-sensor accumulation gives, to the bit: the row-wise field and
   // accumulator promise the same arithmetic in the same order. Layouts 2-5 use the acoustic
   // field with targets on sensors (clamped readings) and scalings other than the identity.
+  // Layout 6 puts robots at dyadic points whose bisectors (x, y = 0.3125, 0.5625, 0.8125) pass
+  // exactly through sensor columns and rows: those sensors lie on the boundary of two cells.
   const protocols::ScalingKind scalings[] = {protocols::ScalingKind::identity, protocols::ScalingKind::saturate,
                                              protocols::ScalingKind::power, protocols::ScalingKind::log1p};
-  for (int layout = 0; layout < 6; ++layout) {
+  for (int layout = 0; layout < 7; ++layout) {
     WorldDef def;
     def.seed = 5;
     def.domain = protocols::rectangle(0, 0, 1, 1);
@@ -138,14 +140,17 @@ TEST_CASE("the oracle's scanline pass selects exactly the sensors an exact point
     for (int j = 0; j < side; ++j)
       for (int i = 0; i < side; ++i) def.sensors.push_back({Vec2{(i + 0.5) / side, (j + 0.5) / side}, 1.0 / (side * side)});
     sim::RandomStream rng(static_cast<std::uint64_t>(layout));
-    if (layout % 2 == 0) {
+    if (layout == 6) {
+      for (const double y : {0.1875, 0.4375, 0.6875, 0.9375})
+        for (const double x : {0.1875, 0.4375, 0.6875, 0.9375}) def.robots.push_back(Vec2{x, y});
+    } else if (layout % 2 == 0) {
       for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i) def.robots.push_back(Vec2{(i + 0.5) / 4, (j + 0.5) / 4});
     } else {
       for (int r = 0; r < 25; ++r) def.robots.push_back(Vec2{rng.uniform01(), rng.uniform01()});
     }
     protocols::DensityScaling scaling;
-    if (layout < 2) {
+    if (layout < 2 || layout == 6) {
       def.field.kind = agents::FieldKind::uniform;
     } else {
       def.field.kind = agents::FieldKind::acoustic;
@@ -158,10 +163,12 @@ TEST_CASE("the oracle's scanline pass selects exactly the sensors an exact point
     sim::Simulator simulator;
     World world(simulator, def);
     agents::AnalyticField field(def.field);
+    std::uint32_t total_selected = 0;
     for (std::size_t r = 0; r < world.robot_count(); ++r) {
       const protocols::ConvexPolygon cell = world.oracle_cell(r).polygon;
       protocols::CentroidAccumulator fast{scaling}, brute{scaling};
       const std::uint32_t selected = world.read_sensors_in(cell, fast);
+      total_selected += selected;
       std::uint32_t expected = 0;
       for (const agents::SensorDef& s : def.sensors)
         if (protocols::contains(cell, s.position)) {
@@ -176,8 +183,11 @@ TEST_CASE("the oracle's scanline pass selects exactly the sensors an exact point
       if (fast.has_mass()) CHECK(fast.centroid() == brute.centroid());
     }
     CHECK(world.clamped_readings() == field.clamped_readings());
+    // Layout 6: the 3 columns and 3 rows of boundary sensors are in two cells (their 9
+    // crossings in four): 1600 + 240 − 18 + 27 selections.
+    if (layout == 6) CHECK(total_selected == 1600 + 240 - 18 + 27);
     // Sensor 410 sits on the first target; (0.7125, 0.3375) is 0.0079 < d_min from the second.
-    if (layout >= 2) CHECK(field.clamped_readings() == 2);
+    if (layout >= 2 && layout < 6) CHECK(field.clamped_readings() == 2);
   }
 }
 

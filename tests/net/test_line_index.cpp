@@ -119,3 +119,55 @@ TEST_CASE("runs of a disk on sensor rows are exactly the points the float distan
     }
   }
 }
+
+TEST_CASE("sure slots of an interval are exactly the points inside it, and the rest clear the guard",
+          "[net]") {
+  // The oracle's scanline takes a row's sensors between two x values from O(1) estimates when
+  // sure_slots says no point is near either end. Intervals are drawn with ends exactly on points,
+  // one ulp either side, a few ulps away, beyond the line ends and reversed.
+  sim::RandomStream rng(13);
+  struct Layout {
+    int nx, ny;
+    double spacing, x0, jitter;
+    bool allowed;  // far from the origin the rounding bound must refuse
+  };
+  const Layout layouts[] = {{40, 3, 1.0 / 40, 0.0, 0.0, true}, {316, 2, 1.0 / 316, 0.0, 0.0, true},
+                            {50, 2, 1e-3, 0.25, 3e-10, true}, {25, 2, 3.0, 1e6, 0.0, true},
+                            {64, 2, 1.0, 0x1p44, 0.0, false}};
+  for (const Layout& layout : layouts) {
+    const std::vector<Vec2> points = grid(layout.nx, layout.ny, layout.spacing, Vec2{layout.x0, 0.0}, 0.5, layout.jitter, rng);
+    std::vector<sim::NodeId> ids;
+    for (std::uint32_t k = 0; k < points.size(); ++k) ids.push_back(sim::node_id(k));
+    net::LineIndex index;
+    REQUIRE(index.build(points, ids));
+    const double guard = 1e-14, extent = std::fabs(layout.x0) + 2.0 * layout.spacing * layout.nx;
+    const bool allowed = index.slot_estimates_are_sure(extent, guard);
+    CHECK(allowed == layout.allowed);
+    if (!allowed) continue;
+    int sure = 0;
+    auto pick = [&] {
+      const double x = index.x(static_cast<std::uint32_t>(rng.below(static_cast<std::uint64_t>(layout.nx))));
+      switch (rng.below(5)) {
+        case 0: return x;
+        case 1: return std::nextafter(x, -INFINITY);
+        case 2: return std::nextafter(x, INFINITY);
+        case 3: return x + rng.uniform(-1.0, 1.0) * layout.spacing;
+        default: return layout.x0 + rng.uniform(-0.3, 1.3) * layout.spacing * layout.nx;
+      }
+    };
+    for (int q = 0; q < 20000; ++q) {
+      const double lo = pick(), hi = pick();
+      std::uint32_t a = 0, c = 0;
+      if (!index.sure_slots(0, lo, hi, a, c)) continue;
+      ++sure;
+      for (std::uint32_t k = 0; k < static_cast<std::uint32_t>(layout.nx); ++k) {
+        const double x = index.x(k);
+        const bool in_run = k >= a && k < c;
+        INFO("slot " << k << " x " << x << " interval [" << lo << ", " << hi << "] run [" << a << ", " << c << ")");
+        REQUIRE(in_run == (x >= lo && x <= hi));
+        if (!in_run) REQUIRE((x < lo - guard || x > hi + guard));
+      }
+    }
+    CHECK(sure > 2000);
+  }
+}
