@@ -110,9 +110,11 @@ void Radio::prepare_index() {
   if (!use_lines_) static_grid_.build(static_positions_, static_ids_);
   const std::vector<NodeId>& slots = use_lines_ ? line_index_.ids() : static_grid_.ids();
   static_interest_ = 0;
+  static_interest_common_ = slots.empty() ? 0 : 0xFFFFFFFFu;
   for (std::uint32_t k = 0; k < slots.size(); ++k) {
     nodes_[sim::index(slots[k])].hot = k;
     static_interest_ |= nodes_[sim::index(slots[k])].interest;
+    static_interest_common_ &= nodes_[sim::index(slots[k])].interest;
   }
   for (std::size_t m = 0; m < mobile_ids_.size(); ++m)
     nodes_[sim::index(mobile_ids_[m])].hot = static_cast<std::uint32_t>(slots.size() + m);
@@ -361,6 +363,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   // go in as runs; the nodes that want the frame (interest) are collected as receivers.
   const bool bulk = use_lines_ && !battery && (!is_broadcast || params_.loss <= 0);
   const bool collect = is_broadcast && (static_interest_ & type_bit) != 0;
+  const bool everyone_wants = (static_interest_common_ & type_bit) != 0;  // no per-node check
   if (use_lines_) {
     const NodeId* const slots = line_index_.ids().data();
     std::uint64_t* const count_diff = rx_count_diff_.data() + type_index * (static_cast<std::size_t>(heard_bytes_.size()) + 1);
@@ -404,7 +407,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
         received += c - a;
         if (collect)
           for (std::uint32_t k = a; k < c; ++k)
-            if (k != source_hot && (interest[k] & type_bit)) receivers.push_back(slots[k]);
+            if (k != source_hot && (everyone_wants || (interest[k] & type_bit))) receivers.push_back(slots[k]);
       }, prefetch_all);
     } else {
       line_index_.for_each_run_within(center, range, [&](std::uint32_t a, std::uint32_t c) {
@@ -424,14 +427,17 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
         // A static sender sits at the center (distance exactly 0): in every run of a valid
         // range, and its coordinates need not be fetched to know it.
         if (hot >= static_count || !(hot == source_hot ? range >= 0.0 : line_index_.within(hot, center, range))) continue;
-        heard[hot] -= bytes;
+        // Booked out as a run of one slot, in the same difference words the runs went to (the
+        // sender's neighbours wrote there just before: no cache miss on the folded counters).
+        heard_diff[hot] -= heard_booking;
+        heard_diff[hot + 1] += heard_booking;
         --hearers;
         if (is_broadcast) {
-          --rx_count[hot];
-          rx_bytes[hot] -= bytes;
+          --count_diff[hot];
+          ++count_diff[hot + 1];
+          bytes_diff[hot] -= bytes;
+          bytes_diff[hot + 1] += bytes;
           --received;
-        } else {
-          --overheard[hot];
         }
       }
     }

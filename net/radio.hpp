@@ -240,7 +240,8 @@ class Radio {
   SpatialGrid static_grid_, mobile_grid_;
   LineIndex line_index_;  // used instead of static_grid_ when the static nodes lie on rows
   bool use_lines_ = false;
-  std::uint32_t static_interest_ = 0;  // union of the static nodes' interest masks
+  std::uint32_t static_interest_ = 0;         // union of the static nodes' interest masks
+  std::uint32_t static_interest_common_ = 0;  // their intersection: types every static node wants
   std::vector<std::uint32_t> interest_;  // [hot]: read for every receiver of a broadcast
   bool index_dirty_ = true;
   sim::Time mobile_index_time_{};
