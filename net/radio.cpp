@@ -24,11 +24,14 @@ Radio::Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t
   for (std::uint32_t bytes = 0; bytes < kAirtimeTableBytes; ++bytes) airtime_table_[bytes] = compute_airtime(bytes);
 }
 
-void Radio::add_node(NodeId id, Node node) {
+void Radio::add_node(NodeId id, Node node, const Vec2& position) {
   MASNET_ASSERT(sim::index(id) == nodes_.size(), "node ids are dense from 0");
-  node.hot = kNoHotIndex;  // given by the next prepare_index()
   node.added_at = simulator_.now();
   nodes_.push_back(node);
+  senders_.emplace_back();
+  hot_.push_back(kNoHotIndex);  // given by the next prepare_index()
+  positions_.push_back(position);
+  is_mobile_.push_back(node.mobile ? 1 : 0);
   index_dirty_ = true;
   if (battery_limited() && params_.energy.idle_power_w > 0) schedule_depletion(id);
 }
@@ -37,9 +40,8 @@ void Radio::add_static_node(NodeId id, const Vec2& position, std::uint64_t rando
   static_ids_.push_back(id);
   static_positions_.push_back(position);
   Node node;
-  node.position = position;
   node.random_key = random_key;
-  add_node(id, node);
+  add_node(id, node, position);
 }
 
 void Radio::add_mobile_node(NodeId id, std::uint64_t random_key) {
@@ -49,7 +51,7 @@ void Radio::add_mobile_node(NodeId id, std::uint64_t random_key) {
   Node node;
   node.mobile = true;
   node.random_key = random_key;
-  add_node(id, node);
+  add_node(id, node, Vec2{0, 0});
 }
 
 void Radio::set_interest(NodeId node, std::uint32_t mask) {
@@ -58,8 +60,7 @@ void Radio::set_interest(NodeId node, std::uint32_t mask) {
 }
 
 Vec2 Radio::position(NodeId node) const {
-  const Node& n = nodes_[sim::index(node)];
-  if (!n.mobile) return n.position;
+  if (!is_mobile_[sim::index(node)]) return positions_[sim::index(node)];
   MASNET_ASSERT(mobile_ != nullptr, "mobile nodes need a MobilePositions");
   return mobile_->position(node);
 }
@@ -90,7 +91,7 @@ void Radio::prepare_index() {
   std::vector<std::uint64_t> heard(n_nodes, 0), overheard(n_nodes, 0), count(n_nodes * types, 0), bytes(n_nodes * types, 0);
   const std::size_t old_stride = heard_bytes_.size();
   for (std::size_t n = 0; n < n_nodes; ++n) {
-    const std::uint32_t hot = nodes_[n].hot;
+    const std::uint32_t hot = hot_[n];
     if (hot == kNoHotIndex) continue;
     heard[n] = heard_bytes_[hot];
     overheard[n] = overheard_count_[hot];
@@ -112,14 +113,14 @@ void Radio::prepare_index() {
   static_interest_ = 0;
   static_interest_common_ = slots.empty() ? 0 : 0xFFFFFFFFu;
   for (std::uint32_t k = 0; k < slots.size(); ++k) {
-    nodes_[sim::index(slots[k])].hot = k;
+    hot_[sim::index(slots[k])] = k;
     static_interest_ |= nodes_[sim::index(slots[k])].interest;
     static_interest_common_ &= nodes_[sim::index(slots[k])].interest;
   }
   for (std::size_t m = 0; m < mobile_ids_.size(); ++m)
-    nodes_[sim::index(mobile_ids_[m])].hot = static_cast<std::uint32_t>(slots.size() + m);
+    hot_[sim::index(mobile_ids_[m])] = static_cast<std::uint32_t>(slots.size() + m);
   interest_.assign(n_nodes, 0);
-  for (const Node& node : nodes_) interest_[node.hot] = node.interest;
+  for (std::size_t n = 0; n < n_nodes; ++n) interest_[hot_[n]] = nodes_[n].interest;
   heard_bytes_.assign(n_nodes, 0);
   overheard_count_.assign(n_nodes, 0);
   rx_count_.assign(n_nodes * types, 0);
@@ -128,7 +129,7 @@ void Radio::prepare_index() {
   rx_count_diff_.assign((n_nodes + 1) * types, 0);
   rx_bytes_diff_.assign((n_nodes + 1) * types, 0);
   for (std::size_t n = 0; n < n_nodes; ++n) {
-    const std::uint32_t hot = nodes_[n].hot;
+    const std::uint32_t hot = hot_[n];
     heard_bytes_[hot] = heard[n];
     overheard_count_[hot] = overheard[n];
     for (std::size_t t = 0; t < types; ++t) {
@@ -173,7 +174,7 @@ TypeCounters Radio::counters(NodeId node, MessageType type) const {
     c.tx_count = tx_[t * stride + sim::index(node)].count;
     c.tx_bytes = tx_[t * stride + sim::index(node)].bytes;
   }
-  const std::uint32_t hot = nodes_[sim::index(node)].hot;
+  const std::uint32_t hot = hot_[sim::index(node)];
   if (hot != kNoHotIndex) {
     c.rx_count = rx_count_[t * heard_bytes_.size() + hot];
     c.rx_bytes = rx_bytes_[t * heard_bytes_.size() + hot];
@@ -215,13 +216,14 @@ NodeRadioStats Radio::stats(NodeId node) {
   if (index_dirty_) prepare_index();
   materialize();
   const Node& n = nodes_[sim::index(node)];
+  const std::uint32_t hot = hot_[sim::index(node)];
   NodeRadioStats s;
-  s.heard_bytes = heard_bytes_[n.hot];
-  s.overheard_count = overheard_count_[n.hot];
+  s.heard_bytes = heard_bytes_[hot];
+  s.overheard_count = overheard_count_[hot];
   s.lost_count = n.lost_count;
   s.unreachable_count = n.unreachable_count;
   s.refused_count = n.refused_count;
-  s.energy_tx_j = n.energy_tx_j;
+  s.energy_tx_j = senders_[sim::index(node)].energy_tx_j;
   s.energy_rx_j = rx_energy_j(params_.energy, 8.0 * static_cast<double>(s.heard_bytes));
   s.energy_idle_j = idle_j(n);
   s.alive = n.alive;
@@ -229,16 +231,16 @@ NodeRadioStats Radio::stats(NodeId node) {
   return s;
 }
 
-double Radio::consumed_j(const Node& node) const {
-  return node.energy_tx_j + idle_j(node) +
-         rx_energy_j(params_.energy, 8.0 * static_cast<double>(heard_bytes_[node.hot]));
+double Radio::consumed_j(NodeId id) const {
+  return senders_[sim::index(id)].energy_tx_j + idle_j(nodes_[sim::index(id)]) +
+         rx_energy_j(params_.energy, 8.0 * static_cast<double>(heard_bytes_[hot_[sim::index(id)]]));
 }
 
 bool Radio::afford(NodeId id, double energy_j) {
   // Only with a battery: a node that cannot pay for a frame is empty and stops.
   Node& node = nodes_[sim::index(id)];
   if (!node.alive) return false;
-  if (params_.energy.battery_j - consumed_j(node) < energy_j) {
+  if (params_.energy.battery_j - consumed_j(id) < energy_j) {
     kill(id);
     return false;
   }
@@ -247,9 +249,10 @@ bool Radio::afford(NodeId id, double energy_j) {
 
 void Radio::schedule_depletion(NodeId id) {
   Node& node = nodes_[sim::index(id)];
+  const std::uint32_t hot = hot_[sim::index(id)];
   const double remaining =
-      params_.energy.battery_j - node.energy_tx_j - idle_j(node) -
-      (node.hot == kNoHotIndex ? 0.0 : rx_energy_j(params_.energy, 8.0 * static_cast<double>(heard_bytes_[node.hot])));
+      params_.energy.battery_j - senders_[sim::index(id)].energy_tx_j - idle_j(node) -
+      (hot == kNoHotIndex ? 0.0 : rx_energy_j(params_.energy, 8.0 * static_cast<double>(heard_bytes_[hot])));
   simulator_.cancel(node.depletion_event);
   // The idle drain empties the battery at a known time: a scheduled event, not a poll.
   const sim::Duration left = sim::seconds(std::max(remaining, 0.0) / params_.energy.idle_power_w);
@@ -275,19 +278,22 @@ std::uint32_t Radio::new_flight() { return sim::reuse_or_append(free_flights_, f
 
 bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& payload, double destination_distance) {
   if (index_dirty_) prepare_index();
-  Node& src = nodes_[sim::index(source)];
-  if (!src.alive) {
-    ++src.refused_count;
+  const std::size_t source_index = sim::index(source);
+  const bool battery = battery_limited();
+  // Only a battery kills a node: without one every node is alive, and its cold record is not
+  // fetched for a frame.
+  if (battery && !nodes_[source_index].alive) {
+    ++nodes_[source_index].refused_count;
     return false;
   }
-  const bool battery = battery_limited();
+  Sender& src = senders_[source_index];
   range = std::min(range, params_.max_range);
   const MessageType type = type_of(payload);
   const std::uint32_t bytes = size_bytes(payload, params_.sizes);
   const double bits = 8.0 * bytes;
   const double tx_j = tx_energy_j(params_.energy, bits, range * params_.meters_per_unit, crossover_m_);
   if (battery && !afford(source, tx_j)) {
-    ++src.refused_count;
+    ++nodes_[source_index].refused_count;
     return false;
   }
   src.energy_tx_j += tx_j;
@@ -296,7 +302,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   const auto type_index = static_cast<std::size_t>(type);
   // The sender's per-type counter is a cache miss on large networks: fetch it now, count the
   // frame once the receivers are booked.
-  TxCounter& sent = tx_[type_index * nodes_.size() + sim::index(source)];
+  TxCounter& sent = tx_[type_index * nodes_.size() + source_index];
   __builtin_prefetch(&sent, 1);
   if (!free_flights_.empty()) prefetch_flight(free_flights_.back());  // likewise
   ++totals_[type_index].tx_count;
@@ -334,7 +340,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     if (drains) schedule_depletion(id);  // the idle drain now ends sooner
     if (params_.loss > 0) {
       Node& node = nodes_[sim::index(id)];
-      if (sim::keyed_uniform01(seed_, kLossPurpose, src.random_key, node.random_key, frame_number) < params_.loss) {
+      if (sim::keyed_uniform01(seed_, kLossPurpose, nodes_[source_index].random_key, node.random_key, frame_number) < params_.loss) {
         ++node.lost_count;
         return;
       }
@@ -354,9 +360,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
 
   const Vec2 center = position(source);
   // Hot indices compared instead of ids: the inner loops load nothing but coordinates.
-  const std::uint32_t source_hot = src.hot;
-  const std::uint32_t destination_hot =
-      destination == sim::kNoNode ? kNoHotIndex : nodes_[sim::index(destination)].hot;
+  const std::uint32_t source_hot = hot_[source_index];
+  const std::uint32_t destination_hot = destination == sim::kNoNode ? kNoHotIndex : hot_[sim::index(destination)];
   const std::uint32_t static_count = static_cast<std::uint32_t>(static_ids_.size());
   const bool is_broadcast = destination == sim::kNoNode;
   // Booked in bulk whenever no reception can fail (no battery, no loss): energy and counters
@@ -453,11 +458,11 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   }
   if (is_broadcast) {
     for_each_mobile_within(center, range, [&](NodeId id) {
-      if (id != source) receive(id, nodes_[sim::index(id)].hot);
+      if (id != source) receive(id, hot_[sim::index(id)]);
     });
   } else {
     for_each_mobile_within(center, range, [&](NodeId id) {
-      if (id != source && id != destination) overhear(id, nodes_[sim::index(id)].hot);
+      if (id != source && id != destination) overhear(id, hot_[sim::index(id)]);
     });
     // The addressee is decided by its distance, not by the grid's rounding at the boundary.
     // The same arithmetic as unicast()'s distance, so the known value decides identically.
@@ -465,7 +470,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     if (distance <= range)
       receive(destination, destination_hot);
     else
-      ++src.unreachable_count;
+      ++nodes_[source_index].unreachable_count;
   }
   ++sent.count;
   sent.bytes += bytes;
@@ -503,7 +508,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     if (f.only != sim::kNoNode) f.receivers.assign(1, f.only);  // one event per receiver below
     f.pending = static_cast<std::uint32_t>(f.receivers.size());
     for (NodeId id : f.receivers) {
-      const double u = sim::keyed_uniform01(seed_, kJitterPurpose, src.random_key,
+      const double u = sim::keyed_uniform01(seed_, kJitterPurpose, nodes_[source_index].random_key,
                                             nodes_[sim::index(id)].random_key, frame_number);
       simulator_.at(arrival + sim::seconds(u * params_.jitter_s), [this, flight, id] { deliver_one(flight, id); });
     }
@@ -553,7 +558,7 @@ void Radio::deliver(std::uint32_t flight) {
     // networks (each sensor row is a jump): fetch a few receivers ahead.
     const std::size_t n = f.receivers.size();
     for (std::size_t k = 0; k < n; ++k) {
-      if (k + kDeliveryLookahead < n) __builtin_prefetch(&nodes_[sim::index(f.receivers[k + kDeliveryLookahead])]);
+      if (k + kDeliveryLookahead < n) __builtin_prefetch(&senders_[sim::index(f.receivers[k + kDeliveryLookahead])], 1);
       hand_over(f.frame, f.receivers[k]);
     }
   }

@@ -142,25 +142,26 @@ class Radio {
   sim::Duration airtime(std::uint32_t bytes) const;
 
  private:
-  // Cold per-node state. The counters touched by every hearer of a frame live apart in
-  // `heard_bytes_` / `overheard_count_`, indexed by a "hot index": static nodes by their
-  // slot in the spatial grid (so a range query walks contiguous memory), mobile nodes after.
-  // What a transmission touches comes first: one cache line per sender (64 bytes).
-  struct alignas(64) Node {
-    Vec2 position{0, 0};  // static nodes only
+  // Cold per-node state: what only batteries, loss, jitter, airtime queues and reports need.
+  // What every transmission reads and writes of its sender lives apart in dense arrays by node
+  // id (`senders_`, `hot_`, `positions_`): a burst of replies from neighbouring sensors walks
+  // them in order, several senders to a cache line. The counters touched by every hearer of a
+  // frame live in `heard_bytes_` / `overheard_count_`, indexed by a "hot index": static nodes by
+  // their slot in the spatial grid (so a range query walks contiguous memory), mobile nodes after.
+  struct Node {
     bool mobile = false;
     bool alive = true;
     std::uint32_t interest = 0xFFFFFFFFu;
-    std::uint32_t hot = 0;
     std::uint64_t random_key = 0;
-    std::uint64_t frames_sent = 0;
-    double energy_tx_j = 0.0;
-    sim::Time busy_until{};
-    // Rarely touched.
     std::uint64_t lost_count = 0, unreachable_count = 0, refused_count = 0;
     sim::Time added_at{};  // idle drain runs from here to min(now, died_at)
     sim::Time died_at = sim::kTimeMax;
     sim::EventId depletion_event;
+  };
+  struct Sender {
+    double energy_tx_j = 0.0;
+    std::uint64_t frames_sent = 0;
+    sim::Time busy_until{};  // `airtime` level: when its queued frames are all sent
   };
   struct InFlight {
     Frame frame;
@@ -175,7 +176,7 @@ class Radio {
   sim::Duration latency_{};
   double crossover_m_ = 0.0;
 
-  void add_node(NodeId id, Node node);
+  void add_node(NodeId id, Node node, const Vec2& position);
   /// A unicast passes its addressee's distance (the range before the max_range cap), so the
   /// reach test need not look the addressee up again.
   bool transmit(NodeId source, NodeId destination, double range, Payload&& payload, double destination_distance = -1.0);
@@ -187,7 +188,7 @@ class Radio {
   /// replies sent at one instant scans them many times.
   const std::vector<Vec2>& mobile_positions_now();
   bool battery_limited() const { return params_.energy.battery_j > 0; }
-  double consumed_j(const Node& node) const;
+  double consumed_j(NodeId node) const;
   bool afford(NodeId node, double energy_j);
   /// Idle energy as a function of time, not an accumulator: the value never depends on how
   /// often someone looked at it (recorders must not change the model's numbers).
@@ -211,6 +212,10 @@ class Radio {
   const MobilePositions* mobile_ = nullptr;
 
   std::vector<Node> nodes_;
+  std::vector<Sender> senders_;        // [node]
+  std::vector<std::uint32_t> hot_;     // [node]: the hot index, kNoHotIndex until indexed
+  std::vector<Vec2> positions_;        // [node]: static nodes' positions
+  std::vector<std::uint8_t> is_mobile_;  // [node]: 1 for mobile nodes
   struct TxCounter {
     std::uint64_t count = 0, bytes = 0;  // side by side: a transmission touches one cache line
   };
