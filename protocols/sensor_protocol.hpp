@@ -1,8 +1,9 @@
 #pragma once
 // What a static sensor does (paper §III-B): keep the closest robot it heard and report to it
 // once at the beginning, and answer a robot's SENSE with its reading when it lies inside the
-// robot's cell. One shared, stateless object serves every sensor; the per-sensor state is a
-// small struct the world stores in an array (10⁶ sensors must stay cheap).
+// robot's cell. One shared object serves every sensor (its only state is the prepared cell of
+// the SENSE being answered, a cache); the per-sensor state is a small struct the world stores
+// in an array (10⁶ sensors must stay cheap).
 #include <cstdint>
 #include <limits>
 
