@@ -358,19 +358,24 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
   sensor_lines_.for_each_line_between(slicer_.y_min(), slicer_.y_max(), [&](std::size_t line, double y, std::uint32_t begin, std::uint32_t end) {
     const auto [xl, xr] = slicer_.extent(y);
     if (!(xl <= xr + 2.0 * margin)) return;
-    PendingRow row{line, y, xl, xr, 0, 0, false};
     std::uint32_t a, c;
-    if (sure_rows && xl + margin <= xr - margin && sensor_lines_.sure_slots(line, xl + margin, xr - margin, a, c)) {
-      row.first = a;
-      row.last = c;
-      row.sure = true;
-    } else {  // the exact search starts one slot before the guess and ends one past the right end
+    const bool sure = sure_rows && xl + margin <= xr - margin && sensor_lines_.sure_slots(line, xl + margin, xr - margin, a, c);
+    if (!sure) {  // the exact search starts one slot before the guess and ends one past the right end
       a = sensor_lines_.guess_at_or_after(line, xl - margin);
       c = sensor_lines_.guess_at_or_after(line, xr);
     }
     __builtin_prefetch(&sensor_lines_.x(a > begin ? a - 1 : begin));
     __builtin_prefetch(&sensor_lines_.x(c < end ? c : end - 1));
-    pending_rows_.push_back(row);
+    // Field by field into the vector: a temporary copied in whole makes the compiler reload
+    // it across two stores, which the CPU cannot forward (a stall per row).
+    PendingRow& row = pending_rows_.emplace_back();
+    row.line = line;
+    row.y = y;
+    row.left = xl;
+    row.right = xr;
+    row.first = a;
+    row.last = c;
+    row.sure = sure;
   });
   const bool row_wise = def_.sensor_noise_sigma <= 0.0 && uniform_sensor_area_ > 0.0 && !diffusion_;
   const std::optional<double> uniform = field_.uniform_value();
