@@ -558,7 +558,12 @@ void Radio::deliver(std::uint32_t flight) {
     // networks (each sensor row is a jump): fetch a few receivers ahead.
     const std::size_t n = f.receivers.size();
     for (std::size_t k = 0; k < n; ++k) {
-      if (k + kDeliveryLookahead < n) __builtin_prefetch(&senders_[sim::index(f.receivers[k + kDeliveryLookahead])], 1);
+      if (k + kDeliveryLookahead < n) {
+        // What a receiver that answers reads first: its position, then its sender state.
+        const std::size_t ahead = sim::index(f.receivers[k + kDeliveryLookahead]);
+        __builtin_prefetch(&positions_[ahead]);
+        __builtin_prefetch(&senders_[ahead], 1);
+      }
       hand_over(f.frame, f.receivers[k]);
     }
   }
