@@ -388,8 +388,7 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
       first = sensor_lines_.first_at_or_after(row.line, xl - margin);
       last = sensor_lines_.first_at_or_after(row.line, xr + 2.0 * margin);
       auto inside_at = [&](std::uint32_t k) {
-        const double x = sensor_lines_.x(k);
-        return (x >= xl + margin && x <= xr - margin) || protocols::contains(cell, Vec2{x, y});
+        return slicer_.contains_on_row(cell.vertices, Vec2{sensor_lines_.x(k), y}, xl, xr);
       };
       // Exact at the ends; everything between is inside (convexity).
       while (first < last && !inside_at(first)) ++first;

@@ -60,9 +60,7 @@ class LineIndex {
   /// whose points must moreover be more than `guard` (world units) from either end: a bound on
   /// the rounding of the slot estimates, and the guard, both well below the sure margin.
   bool slot_estimates_are_sure(double extent, double guard) const {
-    const double rounding = 1e-8 + kUlp * (max_inv_dx_ * 16.0 * (extent + max_abs_x_) +
-                                           4.0 * (static_cast<double>(max_even_count_) + 2.0));
-    return rounding <= 0.25 * kSureMargin && guard * max_inv_dx_ <= 0.25 * kSureMargin;  // false on NaN
+    return estimate_rounding(extent) <= 0.25 * kSureMargin && guard * max_inv_dx_ <= 0.25 * kSureMargin;  // false on NaN
   }
   /// The slots [a, c) of `line` whose x lie in [lo, hi], from O(1) estimates, when the line is
   /// evenly spaced and both ends lie at least kSureMargin (in slots) from every point; false
@@ -180,15 +178,18 @@ class LineIndex {
   static constexpr double kMinSureHalf = 1.0 / 1024;  // of the radius
   static constexpr double kUlp = 0x1p-52;
 
-  /// Whether sure_run may be used for a disk at x = cx with this radius: a bound, in slots, of
-  /// every rounding error involved, well below the margin. Terms: 1e-8 the lines' deviation from
-  /// even spacing (<= 1e-9, checked by build); 16u·(|cx| + r + max|x|)·inv_dx the rounding of
-  /// the chord ends, of x − cx and of the product by inv_dx; 4096u·r·inv_dx the float test's own
-  /// uncertainty, about 2.3u·r²/half with half >= r/1024; 4u·count the shift by one.
+  /// A bound, in slots, on the rounding of a slot estimate of a value within [−span, span] on any
+  /// evenly spaced line. Terms: 1e-8 the lines' deviation from even spacing (<= 1e-9, checked by
+  /// build); 16u·(span + max|x|)·inv_dx the rounding of the value, of its offset from the line's
+  /// start and of the product by inv_dx; 4u·count the shift by one.
+  double estimate_rounding(double span) const {
+    return 1e-8 + kUlp * (max_inv_dx_ * 16.0 * (span + max_abs_x_) + 4.0 * (static_cast<double>(max_even_count_) + 2.0));
+  }
+  /// Whether sure_run may be used for a disk at x = cx with this radius: the estimates' rounding
+  /// for chord ends within |cx| + r, plus 4096u·r·inv_dx for the float test's own uncertainty
+  /// (about 2.3u·r²/half with half >= r/1024), well below the margin.
   bool estimates_are_sure(double cx, double radius) const {
-    const double rounding =
-        1e-8 + kUlp * (max_inv_dx_ * (16.0 * (std::fabs(cx) + radius + max_abs_x_) + 4096.0 * radius) +
-                       4.0 * (static_cast<double>(max_even_count_) + 2.0));
+    const double rounding = estimate_rounding(std::fabs(cx) + radius) + kUlp * max_inv_dx_ * 4096.0 * radius;
     return rounding <= 0.25 * kSureMargin;  // false on NaN
   }
 

@@ -24,24 +24,23 @@ Radio::Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t
   for (std::uint32_t bytes = 0; bytes < kAirtimeTableBytes; ++bytes) airtime_table_[bytes] = compute_airtime(bytes);
 }
 
-void Radio::add_node(NodeId id, Node node, const Vec2& position) {
+void Radio::add_node(NodeId id, Node node, bool mobile, const Vec2& position) {
   MASNET_ASSERT(sim::index(id) == nodes_.size(), "node ids are dense from 0");
   node.added_at = simulator_.now();
   nodes_.push_back(node);
   senders_.emplace_back();
   hot_.push_back(kNoHotIndex);  // given by the next prepare_index()
   positions_.push_back(position);
-  is_mobile_.push_back(node.mobile ? 1 : 0);
+  is_mobile_.push_back(mobile ? 1 : 0);
   index_dirty_ = true;
   if (battery_limited() && params_.energy.idle_power_w > 0) schedule_depletion(id);
 }
 
 void Radio::add_static_node(NodeId id, const Vec2& position, std::uint64_t random_key) {
   static_ids_.push_back(id);
-  static_positions_.push_back(position);
   Node node;
   node.random_key = random_key;
-  add_node(id, node, position);
+  add_node(id, node, false, position);
 }
 
 void Radio::add_mobile_node(NodeId id, std::uint64_t random_key) {
@@ -49,9 +48,8 @@ void Radio::add_mobile_node(NodeId id, std::uint64_t random_key) {
   mobile_index_valid_ = false;
   mobile_cache_valid_ = false;
   Node node;
-  node.mobile = true;
   node.random_key = random_key;
-  add_node(id, node, Vec2{0, 0});
+  add_node(id, node, true, Vec2{0, 0});
 }
 
 void Radio::set_interest(NodeId node, std::uint32_t mask) {
@@ -107,8 +105,11 @@ void Radio::prepare_index() {
     for (std::size_t n = 0; n < old_nodes; ++n) tx[t * n_nodes + n] = tx_[t * old_nodes + n];
   tx_ = std::move(tx);
   // Sensor grids lie on rows: index them as lines, so frames can be booked run by run.
-  use_lines_ = line_index_.build(static_positions_, static_ids_);
-  if (!use_lines_) static_grid_.build(static_positions_, static_ids_);
+  std::vector<Vec2> static_positions;
+  static_positions.reserve(static_ids_.size());
+  for (const NodeId id : static_ids_) static_positions.push_back(positions_[sim::index(id)]);
+  use_lines_ = line_index_.build(static_positions, static_ids_);
+  if (!use_lines_) static_grid_.build(static_positions, static_ids_);
   const std::vector<NodeId>& slots = use_lines_ ? line_index_.ids() : static_grid_.ids();
   static_interest_ = 0;
   static_interest_common_ = slots.empty() ? 0 : 0xFFFFFFFFu;

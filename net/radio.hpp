@@ -149,7 +149,6 @@ class Radio {
   // frame live in `heard_bytes_` / `overheard_count_`, indexed by a "hot index": static nodes by
   // their slot in the spatial grid (so a range query walks contiguous memory), mobile nodes after.
   struct Node {
-    bool mobile = false;
     bool alive = true;
     std::uint32_t interest = 0xFFFFFFFFu;
     std::uint64_t random_key = 0;
@@ -176,7 +175,7 @@ class Radio {
   sim::Duration latency_{};
   double crossover_m_ = 0.0;
 
-  void add_node(NodeId id, Node node, const Vec2& position);
+  void add_node(NodeId id, Node node, bool mobile, const Vec2& position);
   /// A unicast passes its addressee's distance (the range before the max_range cap), so the
   /// reach test need not look the addressee up again.
   bool transmit(NodeId source, NodeId destination, double range, Payload&& payload, double destination_distance = -1.0);
@@ -214,7 +213,7 @@ class Radio {
   std::vector<Node> nodes_;
   std::vector<Sender> senders_;        // [node]
   std::vector<std::uint32_t> hot_;     // [node]: the hot index, kNoHotIndex until indexed
-  std::vector<Vec2> positions_;        // [node]: static nodes' positions
+  std::vector<Vec2> positions_;        // [node]: static nodes' positions (unused for mobile ones)
   std::vector<std::uint8_t> is_mobile_;  // [node]: 1 for mobile nodes
   struct TxCounter {
     std::uint64_t count = 0, bytes = 0;  // side by side: a transmission touches one cache line
@@ -241,7 +240,6 @@ class Radio {
   mutable bool diffs_pending_ = false;
 
   std::vector<NodeId> static_ids_, mobile_ids_;
-  std::vector<Vec2> static_positions_;
   SpatialGrid static_grid_, mobile_grid_;
   LineIndex line_index_;  // used instead of static_grid_ when the static nodes lie on rows
   bool use_lines_ = false;

@@ -641,7 +641,7 @@ void ConvexMembership::reset(std::span<const Vec2> vertices) {
 
 bool ConvexMembership::contains(const Vec2& point) {
   if (!slicer_.valid()) return protocols::contains(vertices_, point);
-  const double x = point.x(), y = point.y();
+  const double y = point.y();
   // Strictly below the lowest vertex or above the highest: outside, as the exact test says.
   if (y < slicer_.y_min() || y > slicer_.y_max()) return false;
   if (!row_valid_ || y != row_y_) {
@@ -650,12 +650,7 @@ bool ConvexMembership::contains(const Vec2& point) {
     row_y_ = y;
     row_valid_ = true;
   }
-  // Each end is within margin() of the exact one: farther than that inside both is inside,
-  // beyond either is outside; the rest (and NaN) is decided exactly.
-  const double margin = slicer_.margin();
-  if (x >= left_ + margin && x <= right_ - margin) return true;
-  if (x < left_ - margin || x > right_ + margin) return false;
-  return protocols::contains(vertices_, point);
+  return slicer_.contains_on_row(vertices_, point, left_, right_);
 }
 
 bool is_gabriel_neighbour(const Vec2& a, const Vec2& b, std::span<const Vec2> others) {

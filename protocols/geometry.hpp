@@ -153,6 +153,14 @@ class RowSlicer {
   /// {left, right} ends at height y, for y in [y_min, y_max], never below the previous call's
   /// (since reset() or rewind()).
   std::pair<double, double> extent(double y) { return {left_.x(y), right_.x(y)}; }
+  /// contains(vertices, point) for a point on the row whose extent() is [left, right]: decided
+  /// by the ends where the point is farther than margin() from both, exactly otherwise.
+  bool contains_on_row(std::span<const Vec2> vertices, const Vec2& point, double left, double right) const {
+    const double x = point.x();
+    if (x >= left + margin_ && x <= right - margin_) return true;
+    if (x < left - margin_ || x > right + margin_) return false;
+    return contains(vertices, point);
+  }
 
  private:
   struct Edge {
