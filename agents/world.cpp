@@ -96,12 +96,14 @@ class World::RobotAgent final : public protocols::RobotHost {
 
  private:
   World& world_;
-  std::size_t index_;
-  MotionSegment segment_;
-  protocols::VoronoiProtocol protocol_;
+  // Next to world_: a position query reads both, and the rest of this object (the protocol's
+  // state) is far from this line.
   mutable bool cache_valid_ = false;
   mutable sim::Time cached_at_{};
   mutable MotionState cached_;
+  std::size_t index_;
+  MotionSegment segment_;
+  protocols::VoronoiProtocol protocol_;
 };
 
 // ---- A sensor's host: made on the stack per event; the state lives in arrays ---------------

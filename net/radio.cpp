@@ -269,14 +269,6 @@ void Radio::kill(NodeId id) {  // the battery is empty
   if (listener_) listener_->on_battery_empty(id);
 }
 
-void Radio::prefetch_flight(std::uint32_t flight) const {
-  const char* const record = reinterpret_cast<const char*>(&flights_[flight]);
-  for (std::size_t offset = 0; offset < sizeof(InFlight); offset += 64) __builtin_prefetch(record + offset);
-  __builtin_prefetch(record + sizeof(InFlight) - 1);
-}
-
-std::uint32_t Radio::new_flight() { return sim::reuse_or_append(free_flights_, flights_); }
-
 bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& payload, double destination_distance) {
   if (index_dirty_) prepare_index();
   const std::size_t source_index = sim::index(source);
@@ -305,7 +297,6 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   // frame once the receivers are booked.
   TxCounter& sent = tx_[type_index * nodes_.size() + source_index];
   __builtin_prefetch(&sent, 1);
-  if (!free_flights_.empty()) prefetch_flight(free_flights_.back());  // likewise
   ++totals_[type_index].tx_count;
   totals_[type_index].tx_bytes += bytes;
   const std::uint64_t frame_number = src.frames_sent++;
@@ -458,13 +449,9 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     });
   }
   if (is_broadcast) {
-    for_each_mobile_within(center, range, [&](NodeId id) {
-      if (id != source) receive(id, hot_[sim::index(id)]);
-    });
+    for_each_mobile_within(center, range, [&](NodeId id) { receive(id, hot_[sim::index(id)]); }, source, sim::kNoNode);
   } else {
-    for_each_mobile_within(center, range, [&](NodeId id) {
-      if (id != source && id != destination) overhear(id, hot_[sim::index(id)]);
-    });
+    for_each_mobile_within(center, range, [&](NodeId id) { overhear(id, hot_[sim::index(id)]); }, source, destination);
     // The addressee is decided by its distance, not by the grid's rounding at the boundary.
     // The same arithmetic as unicast()'s distance, so the known value decides identically.
     const double distance = destination_distance >= 0.0 ? destination_distance : (position(destination) - center).norm();
@@ -483,36 +470,39 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   // (On a sensor grid the runs already come in id order: check before sorting.)
   if (receivers.size() > 1 && !std::is_sorted(receivers.begin(), receivers.end())) std::sort(receivers.begin(), receivers.end());
 
-  const std::uint32_t flight = new_flight();
-  InFlight& f = flights_[flight];
-  f.frame.source = source;
-  f.frame.destination = destination;
-  f.frame.type = type;
-  f.frame.size_bytes = bytes;
-  f.frame.range = range;
-  f.frame.sent_at = now;
-  f.frame.number = frame_number;
-  f.frame.payload = std::move(payload);
-  if (receivers.size() == 1) {
-    f.only = receivers[0];
-    f.receivers.clear();
-  } else {
-    f.only = sim::kNoNode;
-    f.receivers.assign(receivers.begin(), receivers.end());
-  }
+  auto fill = [&](Frame& frame) {
+    frame.source = source;
+    frame.destination = destination;
+    frame.type = type;
+    frame.size_bytes = bytes;
+    frame.range = range;
+    frame.sent_at = now;
+    frame.number = frame_number;
+    frame.payload = std::move(payload);
+  };
   if (params_.jitter_s <= 0) {
     // One event delivers to every receiver in id order: the same order separate events with
     // consecutive sequence numbers would give, at a fraction of the cost.
-    f.pending = 1;
-    schedule_delivery(flight, arrival);
-  } else {
-    if (f.only != sim::kNoNode) f.receivers.assign(1, f.only);  // one event per receiver below
-    f.pending = static_cast<std::uint32_t>(f.receivers.size());
-    for (NodeId id : f.receivers) {
-      const double u = sim::keyed_uniform01(seed_, kJitterPurpose, nodes_[source_index].random_key,
-                                            nodes_[sim::index(id)].random_key, frame_number);
-      simulator_.at(arrival + sim::seconds(u * params_.jitter_s), [this, flight, id] { deliver_one(flight, id); });
+    Batch& batch = batch_for(arrival);
+    Delivery& d = batch.deliveries.emplace_back();
+    fill(d.frame);
+    if (receivers.size() == 1) {
+      d.only = receivers[0];
+    } else {
+      d.first = static_cast<std::uint32_t>(batch.receivers.size());
+      d.count = static_cast<std::uint32_t>(receivers.size());
+      batch.receivers.insert(batch.receivers.end(), receivers.begin(), receivers.end());
     }
+    return true;
+  }
+  const std::uint32_t index = sim::reuse_or_append(free_jittered_, jittered_);
+  Jittered& j = jittered_[index];
+  fill(j.frame);
+  j.pending = static_cast<std::uint32_t>(receivers.size());
+  for (NodeId id : receivers) {
+    const double u = sim::keyed_uniform01(seed_, kJitterPurpose, nodes_[source_index].random_key,
+                                          nodes_[sim::index(id)].random_key, frame_number);
+    simulator_.at(arrival + sim::seconds(u * params_.jitter_s), [this, index, id] { deliver_jittered(index, id); });
   }
   return true;
 }
@@ -526,55 +516,67 @@ void Radio::hand_over(const Frame& frame, NodeId receiver) {
   if (listener_) listener_->on_frame(receiver, frame);
 }
 
-void Radio::schedule_delivery(std::uint32_t flight, sim::Time arrival) {
-  if (open_batch_ != 0xFFFFFFFFu && open_batch_time_ == arrival && simulator_.last_sequence() == open_batch_sequence_) {
-    batches_[open_batch_].push_back(flight);
-    return;
-  }
+Radio::Batch& Radio::batch_for(sim::Time arrival) {
+  if (open_batch_ != 0xFFFFFFFFu && open_batch_time_ == arrival && simulator_.last_sequence() == open_batch_sequence_)
+    return batches_[open_batch_];
   const std::uint32_t batch = sim::reuse_or_append(free_batches_, batches_);
-  batches_[batch].assign(1, flight);
   const sim::EventId event = simulator_.at(arrival, [this, batch] { run_batch(batch); });
   open_batch_ = batch;
   open_batch_time_ = arrival;
   open_batch_sequence_ = event.sequence;
+  return batches_[batch];
 }
 
 void Radio::run_batch(std::uint32_t batch) {
-  if (open_batch_ == batch) open_batch_ = 0xFFFFFFFFu;  // closed: what it triggers goes elsewhere
-  // By index: deliveries may schedule new batches, which can reallocate batches_.
-  for (std::size_t i = 0; i < batches_[batch].size(); ++i) {
-    // The frames were written a while ago: fetch the next ones' records while this one is handled.
-    if (i + kDeliveryLookahead < batches_[batch].size()) prefetch_flight(batches_[batch][i + kDeliveryLookahead]);
-    deliver(batches_[batch][i]);
+  if (open_batch_ == batch) open_batch_ = 0xFFFFFFFFu;  // closed: nothing joins it any more
+  // Handlers may open new batches and so move `batches_`' elements, never this batch's buffers:
+  // the pointers below stay valid.
+  const Delivery* const deliveries = batches_[batch].deliveries.data();
+  const NodeId* const receivers = batches_[batch].receivers.data();
+  const std::size_t count = batches_[batch].deliveries.size();
+  for (std::size_t i = 0; i < count; ++i) {
+    // The frames were written a while ago (a reply burst's round trip of other traffic): fetch
+    // the next ones while this one is handled.
+    if (i + kDeliveryLookahead < count) prefetch_delivery(deliveries[i + kDeliveryLookahead]);
+    const Delivery& d = deliveries[i];
+    if (d.only != sim::kNoNode) {
+      hand_over(d.frame, d.only);
+      continue;
+    }
+    // A broadcast's receivers answer at once and their records are far apart on large
+    // networks (each sensor row is a jump): fetch a few receivers ahead.
+    const NodeId* const ids = receivers + d.first;
+    for (std::uint32_t k = 0; k < d.count; ++k) {
+      if (k % 16 == 0 && k + 32 < d.count) __builtin_prefetch(ids + k + 32);  // the ids, two lines ahead
+      if (k + kDeliveryLookahead < d.count) {
+        // What a receiver that answers reads first: its position, hot index and sender state.
+        const std::size_t ahead = sim::index(ids[k + kDeliveryLookahead]);
+        __builtin_prefetch(&positions_[ahead]);
+        __builtin_prefetch(&hot_[ahead]);
+        __builtin_prefetch(&senders_[ahead], 1);
+      }
+      hand_over(d.frame, ids[k]);
+    }
   }
+  Batch& done = batches_[batch];
+  done.deliveries.clear();
+  done.receivers.clear();
+  // A burst of a whole network (initial reports) should not stay allocated.
+  if (done.deliveries.capacity() > kKeptBatchCapacity) std::vector<Delivery>().swap(done.deliveries);
+  if (done.receivers.capacity() > kKeptBatchCapacity) std::vector<NodeId>().swap(done.receivers);
   free_batches_.push_back(batch);
 }
 
-void Radio::deliver(std::uint32_t flight) {
-  const InFlight& f = flights_[flight];
-  if (f.only != sim::kNoNode) {
-    hand_over(f.frame, f.only);
-  } else {
-    // A broadcast's receivers answer at once and their records are far apart on large
-    // networks (each sensor row is a jump): fetch a few receivers ahead.
-    const std::size_t n = f.receivers.size();
-    for (std::size_t k = 0; k < n; ++k) {
-      if (k + kDeliveryLookahead < n) {
-        // What a receiver that answers reads first: its position, then its sender state.
-        const std::size_t ahead = sim::index(f.receivers[k + kDeliveryLookahead]);
-        __builtin_prefetch(&positions_[ahead]);
-        __builtin_prefetch(&senders_[ahead], 1);
-      }
-      hand_over(f.frame, f.receivers[k]);
-    }
-  }
-  free_flights_.push_back(flight);
+void Radio::prefetch_delivery(const Delivery& delivery) {
+  const char* const record = reinterpret_cast<const char*>(&delivery);
+  for (std::size_t offset = 0; offset < sizeof(Delivery); offset += 64) __builtin_prefetch(record + offset);
+  __builtin_prefetch(record + sizeof(Delivery) - 1);
 }
 
-void Radio::deliver_one(std::uint32_t flight, NodeId id) {
-  InFlight& f = flights_[flight];
-  hand_over(f.frame, id);
-  if (--f.pending == 0) free_flights_.push_back(flight);
+void Radio::deliver_jittered(std::uint32_t index, NodeId id) {
+  Jittered& j = jittered_[index];
+  hand_over(j.frame, id);
+  if (--j.pending == 0) free_jittered_.push_back(index);
 }
 
 }  // namespace masnet::net

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <deque>
 #include <span>
+#include <utility>
 #include <vector>
 #if defined(__SSE2__)
 #include <emmintrin.h>  // baseline x86-64
@@ -80,8 +81,10 @@ class Radio {
  public:
   /// Below this many mobile nodes a linear scan beats maintaining a grid.
   static constexpr std::size_t kMobileScanLimit = 32;
-  /// How many receivers (or frames of a batch) ahead delivery prefetches their records.
+  /// How many receivers of a broadcast ahead delivery prefetches their records.
   static constexpr std::size_t kDeliveryLookahead = 4;
+  /// A delivery batch keeps its buffers for reuse up to this many entries.
+  static constexpr std::size_t kKeptBatchCapacity = 1u << 14;
 
   Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t seed);
 
@@ -117,7 +120,9 @@ class Radio {
   /// Calls `visit(id)` for every mobile node within `range` of `center` now (ground truth
   /// for recorders and the oracle; not a radio operation).
   template <class Visit>
-  void for_each_mobile_within(const Vec2& center, double range, Visit&& visit);
+  void for_each_mobile_within(const Vec2& center, double range, Visit&& visit) {
+    for_each_mobile_within(center, range, std::forward<Visit>(visit), sim::kNoNode, sim::kNoNode);
+  }
 
   std::size_t node_count() const { return nodes_.size(); }
   const RadioParams& params() const { return params_; }
@@ -162,10 +167,20 @@ class Radio {
     std::uint64_t frames_sent = 0;
     sim::Time busy_until{};  // `airtime` level: when its queued frames are all sent
   };
-  struct InFlight {
+  // A frame in the air. Without jitter it waits inside its delivery batch (below), written
+  // and read in order; with jitter each reception is its own event and the frame waits in
+  // `jittered_` until the last one.
+  struct Delivery {
     Frame frame;
-    NodeId only = sim::kNoNode;     // the receiver, when there is one (unicasts): no indirection
-    std::vector<NodeId> receivers;  // otherwise, in id order
+    NodeId only = sim::kNoNode;  // the receiver, when there is one (unicasts): no indirection
+    std::uint32_t first = 0, count = 0;  // otherwise its receivers in the batch's `receivers`, id order
+  };
+  struct Batch {
+    std::vector<Delivery> deliveries;
+    std::vector<NodeId> receivers;
+  };
+  struct Jittered {
+    Frame frame;
     std::uint32_t pending = 0;
   };
 
@@ -183,6 +198,11 @@ class Radio {
   /// Folds the bulk (run-length) bookings into the per-node counters.
   void materialize() const;
   void prepare_mobile_index();
+  /// As the public one, but never visits `skip_a` or `skip_b`, and does not ask where they
+  /// are (a unicast's sender and addressee: the addressee is a candidate of every query it
+  /// answers, at exactly the range).
+  template <class Visit>
+  void for_each_mobile_within(const Vec2& center, double range, Visit&& visit, NodeId skip_a, NodeId skip_b);
   /// Positions of the (few) mobile nodes now, asked once per simulated instant: a burst of
   /// replies sent at one instant scans them many times.
   const std::vector<Vec2>& mobile_positions_now();
@@ -195,14 +215,11 @@ class Radio {
   void schedule_depletion(NodeId id);
   void kill(NodeId id);
   void hand_over(const Frame& frame, NodeId receiver);
-  void deliver(std::uint32_t flight);
-  void deliver_one(std::uint32_t flight, NodeId receiver);
-  /// Schedules `flight` for delivery at `arrival`; see `open_batch_`.
-  void schedule_delivery(std::uint32_t flight, sim::Time arrival);
+  /// The batch that delivers at `arrival` (see `open_batch_`), scheduled if new.
+  Batch& batch_for(sim::Time arrival);
   void run_batch(std::uint32_t batch);
-  std::uint32_t new_flight();
-  /// Fetches the cache lines of a flight record (delivery reads its frame and receivers).
-  void prefetch_flight(std::uint32_t flight) const;
+  static void prefetch_delivery(const Delivery& delivery);
+  void deliver_jittered(std::uint32_t frame, NodeId receiver);
 
   sim::Simulator& simulator_;
   RadioParams params_;
@@ -254,22 +271,23 @@ class Radio {
   sim::Time mobile_cache_time_{};
   bool mobile_cache_valid_ = false;
 
-  std::deque<InFlight> flights_;  // deque: a frame stays put while handlers send new ones
-  // Delivery batches: a delivery due at the same time as the last one scheduled, with no other
+  // Delivery batches: a frame due at the same time as the last one scheduled, with no other
   // event scheduled in between, joins that event instead of getting its own. Separate events
   // would have run back to back in the same order, so nothing observable changes but the
-  // event count: a burst of replies to one SENSE is one event.
-  std::vector<std::vector<std::uint32_t>> batches_;
+  // event count: a burst of replies to one SENSE is one event, its frames side by side in
+  // memory (written in order at send time, read in order at delivery: no scattered records).
+  std::vector<Batch> batches_;
   std::vector<std::uint32_t> free_batches_;
   std::uint32_t open_batch_ = 0xFFFFFFFFu;
   sim::Time open_batch_time_{};
   std::uint64_t open_batch_sequence_ = 0;
-  std::vector<std::uint32_t> free_flights_;
+  std::deque<Jittered> jittered_;  // deque: a frame stays put while handlers send new ones
+  std::vector<std::uint32_t> free_jittered_;
   std::vector<NodeId> scratch_receivers_;
 };
 
 template <class Visit>
-void Radio::for_each_mobile_within(const Vec2& center, double range, Visit&& visit) {
+void Radio::for_each_mobile_within(const Vec2& center, double range, Visit&& visit, NodeId skip_a, NodeId skip_b) {
   if (mobile_ids_.empty()) return;
   const double r2 = range * range;
   if (mobile_ids_.size() <= kMobileScanLimit) {
@@ -296,7 +314,10 @@ void Radio::for_each_mobile_within(const Vec2& center, double range, Visit&& vis
       const double dx = positions[m].x() - cx, dy = positions[m].y() - cy;
       in_range |= static_cast<std::uint64_t>(dx * dx + dy * dy <= r2) << m;
     }
-    for (; in_range != 0; in_range &= in_range - 1) visit(mobile_ids_[static_cast<std::size_t>(std::countr_zero(in_range))]);
+    for (; in_range != 0; in_range &= in_range - 1) {
+      const NodeId id = mobile_ids_[static_cast<std::size_t>(std::countr_zero(in_range))];
+      if (id != skip_a && id != skip_b) visit(id);
+    }
     return;
   }
   // The index may be stale: widen the search by how far any node can have moved since it
@@ -304,7 +325,7 @@ void Radio::for_each_mobile_within(const Vec2& center, double range, Visit&& vis
   prepare_mobile_index();
   const double margin = margin_speed_ * sim::to_seconds(simulator_.now() - mobile_index_time_);
   mobile_grid_.for_each_within(center, range + margin, [&](NodeId id, const Vec2&, double) {
-    if ((mobile_->position(id) - center).squaredNorm() <= r2) visit(id);
+    if (id != skip_a && id != skip_b && (mobile_->position(id) - center).squaredNorm() <= r2) visit(id);
   });
 }
 
