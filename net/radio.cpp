@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "sim/free_slots.hpp"
 #include "sim/random.hpp"
@@ -11,6 +12,7 @@ namespace {
 constexpr std::uint64_t kLossPurpose = sim::purpose("radio.loss");
 constexpr std::uint64_t kJitterPurpose = sim::purpose("radio.jitter");
 constexpr std::uint32_t kNoHotIndex = 0xFFFFFFFFu;
+constexpr double kMobileMark = std::numeric_limits<double>::quiet_NaN();
 }  // namespace
 
 Radio::Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t seed)
@@ -30,13 +32,14 @@ void Radio::add_node(NodeId id, Node node, bool mobile, const Vec2& position) {
   nodes_.push_back(node);
   senders_.emplace_back();
   hot_.push_back(kNoHotIndex);  // given by the next prepare_index()
-  positions_.push_back(position);
-  is_mobile_.push_back(mobile ? 1 : 0);
+  // A mobile node's entry is NaN: the one array answers both "where" and "static or not".
+  positions_.push_back(mobile ? Vec2{kMobileMark, kMobileMark} : position);
   index_dirty_ = true;
   if (battery_limited() && params_.energy.idle_power_w > 0) schedule_depletion(id);
 }
 
 void Radio::add_static_node(NodeId id, const Vec2& position, std::uint64_t random_key) {
+  MASNET_ASSERT(std::isfinite(position.x()) && std::isfinite(position.y()), "static nodes stand somewhere");
   static_ids_.push_back(id);
   Node node;
   node.random_key = random_key;
@@ -58,7 +61,8 @@ void Radio::set_interest(NodeId node, std::uint32_t mask) {
 }
 
 Vec2 Radio::position(NodeId node) const {
-  if (!is_mobile_[sim::index(node)]) return positions_[sim::index(node)];
+  const Vec2& known = positions_[sim::index(node)];
+  if (!std::isnan(known.x())) return known;
   MASNET_ASSERT(mobile_ != nullptr, "mobile nodes need a MobilePositions");
   return mobile_->position(node);
 }
@@ -470,34 +474,21 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   // (On a sensor grid the runs already come in id order: check before sorting.)
   if (receivers.size() > 1 && !std::is_sorted(receivers.begin(), receivers.end())) std::sort(receivers.begin(), receivers.end());
 
-  auto fill = [&](Frame& frame) {
-    frame.source = source;
-    frame.destination = destination;
-    frame.type = type;
-    frame.size_bytes = bytes;
-    frame.range = range;
-    frame.sent_at = now;
-    frame.number = frame_number;
-    frame.payload = std::move(payload);
-  };
   if (params_.jitter_s <= 0) {
     // One event delivers to every receiver in id order: the same order separate events with
     // consecutive sequence numbers would give, at a fraction of the cost.
     Batch& batch = batch_for(arrival);
-    Delivery& d = batch.deliveries.emplace_back();
-    fill(d.frame);
-    if (receivers.size() == 1) {
-      d.only = receivers[0];
-    } else {
-      d.first = static_cast<std::uint32_t>(batch.receivers.size());
-      d.count = static_cast<std::uint32_t>(receivers.size());
-      batch.receivers.insert(batch.receivers.end(), receivers.begin(), receivers.end());
-    }
+    const bool one = receivers.size() == 1;
+    const auto first = static_cast<std::uint32_t>(batch.receivers.size());
+    batch.deliveries.push_back(Delivery{Frame{source, destination, type, bytes, range, now, frame_number, std::move(payload)},
+                                        one ? receivers[0] : sim::kNoNode, first,
+                                        one ? 0u : static_cast<std::uint32_t>(receivers.size())});
+    if (!one) batch.receivers.insert(batch.receivers.end(), receivers.begin(), receivers.end());
     return true;
   }
   const std::uint32_t index = sim::reuse_or_append(free_jittered_, jittered_);
   Jittered& j = jittered_[index];
-  fill(j.frame);
+  j.frame = Frame{source, destination, type, bytes, range, now, frame_number, std::move(payload)};
   j.pending = static_cast<std::uint32_t>(receivers.size());
   for (NodeId id : receivers) {
     const double u = sim::keyed_uniform01(seed_, kJitterPurpose, nodes_[source_index].random_key,

@@ -175,6 +175,9 @@ class Radio {
     NodeId only = sim::kNoNode;  // the receiver, when there is one (unicasts): no indirection
     std::uint32_t first = 0, count = 0;  // otherwise its receivers in the batch's `receivers`, id order
   };
+  // Frames are built in place at the end of their batch: value-initialising an element and then
+  // assigning it would zero the line (a string store) and read it straight back (the payload's
+  // alternative), a store-forwarding stall per frame.
   struct Batch {
     std::vector<Delivery> deliveries;
     std::vector<NodeId> receivers;
@@ -230,8 +233,7 @@ class Radio {
   std::vector<Node> nodes_;
   std::vector<Sender> senders_;        // [node]
   std::vector<std::uint32_t> hot_;     // [node]: the hot index, kNoHotIndex until indexed
-  std::vector<Vec2> positions_;        // [node]: static nodes' positions (unused for mobile ones)
-  std::vector<std::uint8_t> is_mobile_;  // [node]: 1 for mobile nodes
+  std::vector<Vec2> positions_;        // [node]: static nodes' positions; NaN for mobile ones
   struct TxCounter {
     std::uint64_t count = 0, bytes = 0;  // side by side: a transmission touches one cache line
   };
