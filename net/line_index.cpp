@@ -9,7 +9,7 @@ bool LineIndex::build(std::span<const Vec2> positions, std::span<const sim::Node
   lines_.clear();
   max_abs_x_ = max_inv_dx_ = 0.0;
   max_even_count_ = 0;
-  lines_even_ = false;
+  lines_even_ = uniform_x_ = false;
   xs_.clear();
   ys_.clear();
   ids_.clear();
@@ -56,6 +56,14 @@ bool LineIndex::build(std::span<const Vec2> positions, std::span<const sim::Node
     }
     lines_.push_back(line);
     begin = end;
+  }
+  uniform_x_ = std::all_of(lines_.begin(), lines_.end(), [&](const Line& line) {
+    return line.even && line.x0 == lines_[0].x0 && line.inv_dx == lines_[0].inv_dx && line.last_half == lines_[0].last_half;
+  });
+  if (uniform_x_) {
+    uniform_x0_ = lines_[0].x0;
+    uniform_inv_dx_ = lines_[0].inv_dx;
+    uniform_last_half_ = lines_[0].last_half;
   }
   lines_even_ = false;
   if (lines_.size() >= 2) {

@@ -84,6 +84,18 @@ class LineIndex {
   /// of slots in the runs, so a visitor need not count (small visitors travel in registers).
   template <class Visit, class Prefetch>
   std::uint64_t for_each_run_within(const Vec2& center, double radius, Visit visit, Prefetch prefetch) const {
+    // A sensor grid's lines all share one spacing and start: its constants then stay in
+    // registers instead of being loaded (and broadcast) line by line.
+    return uniform_x_ ? runs_within<true>(center, radius, visit, prefetch) : runs_within<false>(center, radius, visit, prefetch);
+  }
+  template <class Visit>
+  std::uint64_t for_each_run_within(const Vec2& center, double radius, Visit&& visit) const {
+    return for_each_run_within(center, radius, std::forward<Visit>(visit), [](std::uint32_t, std::uint32_t) {});
+  }
+
+ private:
+  template <bool kUniform, class Visit, class Prefetch>
+  std::uint64_t runs_within(const Vec2& center, double radius, Visit& visit, Prefetch& prefetch) const {
     std::uint64_t covered = 0;
     if (lines_.empty() || !(radius >= 0.0)) return covered;
     const double r2 = radius * radius, cx = center.x(), cy = center.y();
@@ -93,6 +105,10 @@ class LineIndex {
     const double slack = 1e-12 * (std::fabs(cx) + std::fabs(cy) + radius) + 1e-300;
     const std::size_t lo = first_line_at_or_above(cy - radius - slack);
     const bool sure_estimates = estimates_are_sure(cx, radius);
+#if defined(__SSE2__)
+    const __m128d uniform_x0 = _mm_set1_pd(uniform_x0_), uniform_inv_dx = _mm_set1_pd(uniform_inv_dx_);
+    const __m128d uniform_last_half = _mm_set1_pd(uniform_last_half_);
+#endif
     const double min_sure_half = radius * kMinSureHalf;
     // Two passes over batches of lines: first the estimates, with prefetches of the memory each
     // line will touch (on large networks every line is a cache miss: overlapping them is most of
@@ -113,7 +129,16 @@ class LineIndex {
         if (dy2 > r2) continue;
         const double half = std::sqrt(r2 - dy2);
         std::uint32_t a, c;
-        if (!(sure_estimates && line.even && half >= min_sure_half && sure_run(line, cx, half, a, c))) {
+        bool sure = false;
+        if constexpr (kUniform) {
+#if defined(__SSE2__)
+          sure = sure_estimates && half >= min_sure_half &&
+                 sure_slots_of_ends(line.begin, chord_ends(cx, half), uniform_x0, uniform_inv_dx, uniform_last_half, a, c);
+#endif
+        } else {
+          sure = sure_estimates && line.even && half >= min_sure_half && sure_run(line, cx, half, a, c);
+        }
+        if (!sure) {
           // Starting points only: the steps below are exact.
           a = estimate(line, cx - half, true);
           c = estimate(line, cx + half, false);
@@ -153,12 +178,7 @@ class LineIndex {
     }
     return covered;
   }
-  template <class Visit>
-  std::uint64_t for_each_run_within(const Vec2& center, double radius, Visit&& visit) const {
-    return for_each_run_within(center, radius, std::forward<Visit>(visit), [](std::uint32_t, std::uint32_t) {});
-  }
 
- private:
   struct Line {
     double y;
     std::uint32_t begin, end;  // slots
@@ -199,25 +219,34 @@ class LineIndex {
 #if !defined(__SSE2__)
     return false;  // the exact steps do it all
 #else
-    return sure_slots_of_ends(line, _mm_add_pd(_mm_set1_pd(cx), _mm_mul_pd(_mm_set1_pd(half), _mm_set_pd(1.0, -1.0))), a, c);
+    return sure_slots_of_ends(line, chord_ends(cx, half), a, c);
 #endif
   }
 #if defined(__SSE2__)
+  /// {cx − half, cx + half}.
+  static __m128d chord_ends(double cx, double half) {
+    return _mm_add_pd(_mm_set1_pd(cx), _mm_mul_pd(_mm_set1_pd(half), _mm_set_pd(1.0, -1.0)));
+  }
   /// The slots [a, c) of an evenly spaced line between ends = {left, right}, if both lie at least
   /// kSureMargin from a slot.
   static bool sure_slots_of_ends(const Line& line, __m128d ends, std::uint32_t& a, std::uint32_t& c) {
-    __m128d k = _mm_mul_pd(_mm_sub_pd(ends, _mm_set1_pd(line.x0)), _mm_set1_pd(line.inv_dx));
+    return sure_slots_of_ends(line.begin, ends, _mm_set1_pd(line.x0), _mm_set1_pd(line.inv_dx), _mm_set1_pd(line.last_half), a, c);
+  }
+  /// The same from the line's first slot and its constants, each in both lanes.
+  static bool sure_slots_of_ends(std::uint32_t begin, __m128d ends, __m128d x0, __m128d inv_dx, __m128d last_half,
+                                 std::uint32_t& a, std::uint32_t& c) {
+    __m128d k = _mm_mul_pd(_mm_sub_pd(ends, x0), inv_dx);
     // Clamped to the line (a chord end beyond it is half a slot past the end slot), then
     // shifted by one: truncation is then floor, and floor(k + 1) = ceil(k) = floor(k) + 1 for
     // the non-integer k that pass the margin test.
-    k = _mm_min_pd(_mm_max_pd(k, _mm_set1_pd(-0.5)), _mm_set1_pd(line.last_half));
+    k = _mm_min_pd(_mm_max_pd(k, _mm_set1_pd(-0.5)), last_half);
     k = _mm_add_pd(k, _mm_set1_pd(1.0));
     const __m128i slots = _mm_cvttpd_epi32(k);
     const __m128d fraction = _mm_sub_pd(k, _mm_cvtepi32_pd(slots));
     const __m128d from_middle = _mm_andnot_pd(_mm_set1_pd(-0.0), _mm_sub_pd(fraction, _mm_set1_pd(0.5)));
     if (_mm_movemask_pd(_mm_cmple_pd(from_middle, _mm_set1_pd(0.5 - kSureMargin))) != 3) return false;
-    a = line.begin + static_cast<std::uint32_t>(_mm_cvtsi128_si32(slots));
-    c = line.begin + static_cast<std::uint32_t>(_mm_cvtsi128_si32(_mm_shuffle_epi32(slots, 1)));
+    a = begin + static_cast<std::uint32_t>(_mm_cvtsi128_si32(slots));
+    c = begin + static_cast<std::uint32_t>(_mm_cvtsi128_si32(_mm_shuffle_epi32(slots, 1)));
     return true;
   }
 #endif
@@ -270,6 +299,10 @@ class LineIndex {
   double max_abs_x_ = 0.0, max_inv_dx_ = 0.0;
   std::uint32_t max_even_count_ = 0;
   bool lines_even_ = false;  // line y evenly spaced (to 1e-9 of the spacing): see first_line_at_or_above
+  // Every line evenly spaced with the same start, spacing and length (a grid's rows): their
+  // common x0, inv_dx and last_half.
+  bool uniform_x_ = false;
+  double uniform_x0_ = 0.0, uniform_inv_dx_ = 0.0, uniform_last_half_ = 0.0;
   double inv_line_dy_ = 0.0;
   std::vector<double> xs_, ys_;
   std::vector<sim::NodeId> ids_;
