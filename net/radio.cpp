@@ -207,8 +207,31 @@ void Radio::prepare_mobile_index() {
   for (NodeId id : mobile_ids_) positions.push_back(mobile_->position(id));
   mobile_grid_.build(positions, mobile_ids_);
   mobile_index_time_ = now;
+  ++mobile_index_generation_;
   margin_speed_ = mobile_->speed_bound();
   mobile_index_valid_ = true;
+}
+
+const Radio::NearAddressee& Radio::near_addressee(NodeId addressee, double extent) {
+  const double needed = extent * (1.0 + 1e-9);  // covers the rounding of the distances summed
+  const sim::Time now = simulator_.now();
+  if (near_.addressee == addressee && near_.at == now && near_.index_generation == mobile_index_generation_ &&
+      needed <= near_.reach)
+    return near_;
+  // Half as much again: the next replies of the burst come from farther senders as often as not.
+  near_.reach = 1.5 * needed;
+  near_.addressee = addressee;
+  near_.at = now;
+  near_.index_generation = mobile_index_generation_;
+  near_.xs.clear();
+  near_.ys.clear();
+  near_.ids.clear();
+  mobile_grid_.for_each_within(position(addressee), near_.reach, [&](NodeId id, const Vec2& indexed, double) {
+    near_.xs.push_back(indexed.x());
+    near_.ys.push_back(indexed.y());
+    near_.ids.push_back(id);
+  });
+  return near_;
 }
 
 double Radio::idle_j(const Node& node) const {
@@ -455,7 +478,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   if (is_broadcast) {
     for_each_mobile_within(center, range, [&](NodeId id) { receive(id, hot_[sim::index(id)]); }, source, sim::kNoNode);
   } else {
-    for_each_mobile_within(center, range, [&](NodeId id) { overhear(id, hot_[sim::index(id)]); }, source, destination);
+    for_each_mobile_within(center, range, [&](NodeId id) { overhear(id, hot_[sim::index(id)]); }, source, destination,
+                           destination_distance);
     // The addressee is decided by its distance, not by the grid's rounding at the boundary.
     // The same arithmetic as unicast()'s distance, so the known value decides identically.
     const double distance = destination_distance >= 0.0 ? destination_distance : (position(destination) - center).norm();

@@ -204,8 +204,25 @@ class Radio {
   /// As the public one, but never visits `skip_a` or `skip_b`, and does not ask where they
   /// are (a unicast's sender and addressee: the addressee is a candidate of every query it
   /// answers, at exactly the range).
+  /// `skip_b_distance` >= 0: skip_b is a unicast's addressee at that distance from `center`;
+  /// the query then scans the mobile nodes near the addressee (see near_addressee).
   template <class Visit>
-  void for_each_mobile_within(const Vec2& center, double range, Visit&& visit, NodeId skip_a, NodeId skip_b);
+  void for_each_mobile_within(const Vec2& center, double range, Visit&& visit, NodeId skip_a, NodeId skip_b,
+                              double skip_b_distance = -1.0);
+  // The mobile index's points (positions as indexed) within `reach` of a unicast addressee, at
+  // one instant. A burst of replies to one robot asks the same neighbourhood a hundred times:
+  // each reply then scans these few points instead of walking the grid. Any point within r of
+  // a sender at distance d from the addressee lies within r + d of the addressee, so the list
+  // answers every query with r + d <= reach exactly as the grid would, in the same slot order.
+  struct NearAddressee {
+    NodeId addressee = sim::kNoNode;
+    sim::Time at{};
+    std::uint64_t index_generation = 0;
+    double reach = -1.0;
+    std::vector<double> xs, ys;
+    std::vector<NodeId> ids;
+  };
+  const NearAddressee& near_addressee(NodeId addressee, double extent);
   /// Positions of the (few) mobile nodes now, asked once per simulated instant: a burst of
   /// replies sent at one instant scans them many times.
   const std::vector<Vec2>& mobile_positions_now();
@@ -268,6 +285,8 @@ class Radio {
   bool index_dirty_ = true;
   sim::Time mobile_index_time_{};
   bool mobile_index_valid_ = false;
+  std::uint64_t mobile_index_generation_ = 0;  // counts rebuilds
+  NearAddressee near_;
   double margin_speed_ = 0.0;  // speed bound since the mobile index was built
   std::vector<Vec2> mobile_cache_;  // by mobile index, at mobile_cache_time_
   sim::Time mobile_cache_time_{};
@@ -289,7 +308,8 @@ class Radio {
 };
 
 template <class Visit>
-void Radio::for_each_mobile_within(const Vec2& center, double range, Visit&& visit, NodeId skip_a, NodeId skip_b) {
+void Radio::for_each_mobile_within(const Vec2& center, double range, Visit&& visit, NodeId skip_a, NodeId skip_b,
+                                   double skip_b_distance) {
   if (mobile_ids_.empty()) return;
   const double r2 = range * range;
   if (mobile_ids_.size() <= kMobileScanLimit) {
@@ -326,9 +346,23 @@ void Radio::for_each_mobile_within(const Vec2& center, double range, Visit&& vis
   // was built, then check each candidate at its true position now.
   prepare_mobile_index();
   const double margin = margin_speed_ * sim::to_seconds(simulator_.now() - mobile_index_time_);
-  mobile_grid_.for_each_within(center, range + margin, [&](NodeId id, const Vec2&, double) {
+  auto consider = [&](NodeId id) {
     if (id != skip_a && id != skip_b && (mobile_->position(id) - center).squaredNorm() <= r2) visit(id);
-  });
+  };
+  const double radius = range + margin;
+  if (skip_b_distance >= 0.0) {
+    // The grid's own test on the indexed positions, over the addressee's neighbourhood.
+    const NearAddressee& near = near_addressee(skip_b, radius + skip_b_distance);
+    const double cx = center.x(), cy = center.y(), radius2 = radius * radius;
+    const double* const xs = near.xs.data();
+    const double* const ys = near.ys.data();
+    for (std::size_t k = 0; k < near.ids.size(); ++k) {
+      const double ddx = xs[k] - cx, ddy = ys[k] - cy;
+      if (ddx * ddx + ddy * ddy <= radius2) consider(near.ids[k]);
+    }
+    return;
+  }
+  mobile_grid_.for_each_within(center, radius, [&](NodeId id, const Vec2&, double) { consider(id); });
 }
 
 }  // namespace masnet::net

@@ -407,3 +407,78 @@ TEST_CASE("frames booked in bulk on a sensor grid give every node exactly the br
     REQUIRE(s.overheard_count == overheard[j]);
   }
 }
+
+TEST_CASE("bursts of unicasts to one moving robot at one instant are overheard exactly as brute force says",
+          "[net]") {
+  // Replies to one robot at one instant reuse the robots near it (Radio::NearAddressee): senders
+  // near and far in either order (the neighbourhood grows), and bursts to two robots interleaved
+  // at one instant (it is rebuilt), must give the counts a per-frame range check gives.
+  net::RadioParams params;
+  params.max_range = 0.6;
+  Rig rig(params, 5);
+  auto& [sim, radio, rec, motion] = rig;
+  const int side = 32, robots = 300, sensors = side * side;  // robots above the linear-scan limit
+  static_assert(300 > net::Radio::kMobileScanLimit);
+  for (int j = 0; j < side; ++j)
+    for (int i = 0; i < side; ++i) {
+      const auto id = static_cast<std::uint32_t>(j * side + i);
+      radio.add_static_node(sim::node_id(id), Vec2{(i + 0.5) / side, (j + 0.5) / side}, id);
+    }
+  sim::RandomStream rng(21);
+  for (int r = 0; r < robots; ++r) {
+    const auto id = static_cast<std::uint32_t>(sensors + r);
+    motion.lines[id] = {Vec2{rng.uniform01(), rng.uniform01()}, Vec2{rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3)}};
+    radio.add_mobile_node(sim::node_id(id), id);
+  }
+  const int n = sensors + robots;
+  std::vector<std::uint64_t> overheard(n, 0);
+  auto send = [&](std::uint32_t src, std::uint32_t dst) {
+    const Vec2 p = radio.position(sim::node_id(src));
+    const double r = std::min((radio.position(sim::node_id(dst)) - p).norm(), params.max_range);
+    for (int j = 0; j < n; ++j) {
+      if (static_cast<std::uint32_t>(j) == src || static_cast<std::uint32_t>(j) == dst) continue;
+      const Vec2 q = radio.position(sim::node_id(j));
+      const double dx = q.x() - p.x(), dy = q.y() - p.y();
+      if (dx * dx + dy * dy <= r * r) ++overheard[j];
+    }
+    radio.unicast(sim::node_id(src), sim::node_id(dst), net::Payload{net::Position{sim::node_id(src), p}});
+  };
+  // Each burst: the 60 sensors nearest to robot `a` send to it, nearest first (its neighbourhood
+  // must grow) or farthest first, and every 7th sends to the robot nearest to `a` instead.
+  std::vector<std::uint32_t> addressees;
+  for (int k = 0; k < 40; ++k) addressees.push_back(static_cast<std::uint32_t>(sensors + rng.below(robots)));
+  auto run_burst = [&](std::size_t index) {
+    const std::uint32_t a = addressees[index];
+    const Vec2 pa = radio.position(sim::node_id(a));
+    auto distance_to_a = [&](std::uint32_t x) { return (radio.position(sim::node_id(x)) - pa).norm(); };
+    std::uint32_t b = a == static_cast<std::uint32_t>(sensors) ? a + 1 : static_cast<std::uint32_t>(sensors);
+    for (int r = 0; r < robots; ++r) {
+      const auto id = static_cast<std::uint32_t>(sensors + r);
+      if (id != a && distance_to_a(id) < distance_to_a(b)) b = id;
+    }
+    std::vector<std::uint32_t> order(static_cast<std::size_t>(sensors));
+    for (int k = 0; k < sensors; ++k) order[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(k);
+    std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return distance_to_a(x) < distance_to_a(y); });
+    order.resize(60);
+    if (index % 2 == 1) std::reverse(order.begin(), order.end());
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      if (k == 30) {
+        // A third robot jumps next to the next sender (the mobile index is rebuilt mid-burst).
+        const auto c = static_cast<std::uint32_t>(sensors + (index * 7) % robots);
+        if (c != a && c != b) {
+          auto& [p0, v] = motion.lines[c];
+          p0 = radio.position(sim::node_id(order[k])) + Vec2{1e-4, 0} - sim::to_seconds(sim.now()) * v;
+          radio.mobile_node_jumped();
+        }
+      }
+      send(order[k], k % 7 == 3 ? b : a);
+    }
+  };
+  for (std::size_t k = 0; k < addressees.size(); ++k)
+    sim.at(sim::time_at(0.05 * static_cast<double>(k)), [&run_burst, k] { run_burst(k); });
+  sim.run();
+  for (int j = 0; j < n; ++j) {
+    INFO("node " << j);
+    REQUIRE(radio.stats(sim::node_id(j)).overheard_count == overheard[j]);
+  }
+}
