@@ -4,12 +4,14 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <numeric>
 #include <optional>
 #include <stdexcept>
 
 #include <cairo.h>
+#include <fmt/compile.h>
 #include <fmt/format.h>
 #include <fmt/os.h>
 
@@ -838,9 +840,17 @@ RunData load_run_data(const fs::path& dir) {
 void write_sensors_csv(const fs::path& path, const std::vector<agents::SensorDef>& sensors) {
   auto out = fmt::output_file(path.string());
   out.print("index,x,y,area\n");
-  for (std::size_t i = 0; i < sensors.size(); ++i)
-    out.print("{},{},{},{}\n", i, sensors[i].position.x(), sensors[i].position.y(),
-              sensors[i].area);
+  // Compiled formats into a buffer written in large pieces (a million sensors: 27 MB).
+  fmt::memory_buffer rows;
+  for (std::size_t i = 0; i < sensors.size(); ++i) {
+    fmt::format_to(std::back_inserter(rows), FMT_COMPILE("{},{},{},{}\n"), i, sensors[i].position.x(),
+                   sensors[i].position.y(), sensors[i].area);
+    if (rows.size() >= std::size_t{1} << 16) {
+      out.print("{}", fmt::string_view(rows.data(), rows.size()));
+      rows.clear();
+    }
+  }
+  out.print("{}", fmt::string_view(rows.data(), rows.size()));
 }
 
 // ---------------------------------------------------------------------------------------------
