@@ -291,26 +291,36 @@ double World::sensor_reading(std::size_t sensor, const Vec2& position) {
   return value;
 }
 
-protocols::RobotCell World::oracle_cell(std::size_t robot) {
+protocols::RobotCell World::oracle_cell(std::size_t robot, double first_radius) {
   const Vec2 p = robot_state(robot).position;
   const double span = diameter(def_.domain);
   // Cortés' rule with true positions: neighbours within r certify the cell once r >= 2·(farthest
-  // vertex); start from a radius that suits a uniform spread and double.
-  double r = std::max(2.0 * span / std::sqrt(static_cast<double>(robots_.size())), 1e-6);
+  // vertex); start from the caller's guess or a radius that suits a uniform spread, and double.
+  double r = first_radius > 0.0 ? first_radius : std::max(2.0 * span / std::sqrt(static_cast<double>(robots_.size())), 1e-6);
+  struct Site {
+    double d2;
+    NodeId node;
+  };
+  std::vector<Site> found;
   std::vector<Vec2> sites;
   std::vector<NodeId> site_nodes;
   std::vector<std::uint32_t> candidates;
   protocols::Cell cell;
   for (;;) {
+    found.clear();
+    radio_.for_each_mobile_within(p, r, [&](NodeId id) {
+      if (id != robot_node(robot)) found.push_back({(robots_[sim::index(id)]->state().position - p).squaredNorm(), id});
+    });
+    // Nearest first, ties by id: the first few clips shrink the cell and the farther candidates
+    // are dismissed by one distance test each; and the order (so the last bits of the cell)
+    // does not depend on when the radio last rebuilt its mobile index.
+    std::sort(found.begin(), found.end(), [](const Site& a, const Site& b) { return a.d2 < b.d2 || (a.d2 == b.d2 && a.node < b.node); });
     sites.assign(1, p);
     site_nodes.assign(1, robot_node(robot));
-    radio_.for_each_mobile_within(p, r, [&](NodeId id) {
-      if (id != robot_node(robot)) site_nodes.push_back(id);
-    });
-    // In id order: the clipping order (and so the last bits of the cell) must not depend on
-    // when the radio last rebuilt its mobile index.
-    std::sort(site_nodes.begin() + 1, site_nodes.end());
-    for (std::size_t k = 1; k < site_nodes.size(); ++k) sites.push_back(robots_[sim::index(site_nodes[k])]->state().position);
+    for (const Site& site : found) {
+      sites.push_back(robots_[sim::index(site.node)]->state().position);
+      site_nodes.push_back(site.node);
+    }
     candidates.clear();
     for (std::uint32_t i = 1; i < sites.size(); ++i) candidates.push_back(i);
     cell = protocols::voronoi_cell(0, sites, candidates, def_.domain);

@@ -103,8 +103,10 @@ class World final : public net::RadioListener, public net::MobilePositions {
   const protocols::VoronoiProtocol& robot_protocol(std::size_t robot) const;
   /// ρ at a sensor now, noiseless and without counting (metrics, figures).
   double true_density(std::size_t sensor);
-  /// The exact Voronoi cell of `robot` among the true robot positions now.
-  protocols::RobotCell oracle_cell(std::size_t robot);
+  /// The exact Voronoi cell of `robot` among the true robot positions now. Candidates are
+  /// searched within a radius that doubles until Cortés' rule certifies the cell, starting
+  /// from `first_radius` (a guess; <= 0: one that suits a uniform spread of the robots).
+  protocols::RobotCell oracle_cell(std::size_t robot, double first_radius = 0.0);
   /// Adds every sensor inside `cell` with its reading now to `accumulator` (the oracle's
   /// sensing pass; no messages); returns how many.
   std::uint32_t read_sensors_in(const protocols::ConvexPolygon& cell, protocols::CentroidAccumulator& accumulator);

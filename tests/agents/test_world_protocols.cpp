@@ -217,3 +217,33 @@ TEST_CASE("adding a sensor or a robot changes no other node's random draws", "[a
   CHECK(first_updates(3, 0) == base);
   CHECK(first_updates(0, 2) == base);
 }
+
+TEST_CASE("the oracle cell does not depend on the first search radius and equals the all-cells construction",
+          "[agents]") {
+  // Robots above the radio's linear-scan limit (its mobile grid answers the candidate search),
+  // random and clustered; guesses from far too small to far too large.
+  for (int layout = 0; layout < 6; ++layout) {
+    WorldDef def = ::layout(100 + static_cast<std::uint64_t>(layout), protocols::StopCriterion::vertices);
+    sim::RandomStream rng(static_cast<std::uint64_t>(layout));
+    def.robots.clear();
+    const int robots = 40 + 30 * layout;
+    for (int r = 0; r < robots; ++r) {
+      const double spread = layout % 2 == 0 ? 1.0 : 0.3;  // odd layouts: a dense cluster and a sparse rest
+      def.robots.push_back(r % 3 == 0 ? Vec2{rng.uniform01(), rng.uniform01()}
+                                      : Vec2{0.5 + spread * (rng.uniform01() - 0.5), 0.5 + spread * (rng.uniform01() - 0.5)});
+    }
+    sim::Simulator simulator;
+    World world(simulator, def);
+    const std::vector<protocols::Cell> all = protocols::voronoi_cells(def.robots, def.domain);
+    for (std::size_t r = 0; r < world.robot_count(); ++r) {
+      std::vector<sim::NodeId> expected;
+      for (std::uint32_t i : all[r].neighbours) expected.push_back(world.robot_node(i));
+      std::sort(expected.begin(), expected.end());
+      INFO("layout " << layout << " robot " << r);
+      const protocols::RobotCell by_default = world.oracle_cell(r);
+      CHECK(by_default.neighbours == expected);
+      CHECK(protocols::area(by_default.polygon) == Approx(protocols::area(all[r].polygon)).epsilon(1e-9));
+      for (const double guess : {1e-4, 0.05, 0.3, 3.0}) CHECK(world.oracle_cell(r, guess).neighbours == expected);
+    }
+  }
+}
