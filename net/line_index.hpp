@@ -95,7 +95,7 @@ class LineIndex {
 
  private:
   template <bool kUniform, class Visit, class Prefetch>
-  std::uint64_t runs_within(const Vec2& center, double radius, Visit& visit, Prefetch& prefetch) const {
+  std::uint64_t runs_within(const Vec2& center, double radius, Visit visit, Prefetch prefetch) const {
     std::uint64_t covered = 0;
     if (lines_.empty() || !(radius >= 0.0)) return covered;
     const double r2 = radius * radius, cx = center.x(), cy = center.y();
