@@ -212,17 +212,24 @@ void Radio::prepare_mobile_index() {
   mobile_index_valid_ = true;
 }
 
-const Radio::NearAddressee& Radio::near_addressee(NodeId addressee, double extent) {
+const Radio::NearAddressee* Radio::near_addressee(NodeId addressee, double extent) {
   const double needed = extent * (1.0 + 1e-9);  // covers the rounding of the distances summed
   const sim::Time now = simulator_.now();
-  if (near_.addressee == addressee && near_.at == now && near_.index_generation == mobile_index_generation_ &&
-      needed <= near_.reach)
-    return near_;
+  if (!(near_.addressee == addressee && near_.at == now && near_.index_generation == mobile_index_generation_)) {
+    // The first frame to this addressee now: most are the only one (a NEIGHBOR), and walking
+    // the grid once is cheaper than gathering the neighbourhood. Remember it, gather on the next.
+    near_.addressee = addressee;
+    near_.at = now;
+    near_.index_generation = mobile_index_generation_;
+    near_.reach = -1.0;
+    near_.xs.clear();
+    near_.ys.clear();
+    near_.ids.clear();
+    return nullptr;
+  }
+  if (needed <= near_.reach) return &near_;
   // Half as much again: the next replies of the burst come from farther senders as often as not.
   near_.reach = 1.5 * needed;
-  near_.addressee = addressee;
-  near_.at = now;
-  near_.index_generation = mobile_index_generation_;
   near_.xs.clear();
   near_.ys.clear();
   near_.ids.clear();
@@ -231,7 +238,7 @@ const Radio::NearAddressee& Radio::near_addressee(NodeId addressee, double exten
     near_.ys.push_back(indexed.y());
     near_.ids.push_back(id);
   });
-  return near_;
+  return &near_;
 }
 
 double Radio::idle_j(const Node& node) const {

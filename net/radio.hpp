@@ -222,7 +222,9 @@ class Radio {
     std::vector<double> xs, ys;
     std::vector<NodeId> ids;
   };
-  const NearAddressee& near_addressee(NodeId addressee, double extent);
+  /// The list for a frame to `addressee` from a sender at `extent` − r, or null on the first
+  /// frame to it at this instant (the caller walks the grid).
+  const NearAddressee* near_addressee(NodeId addressee, double extent);
   /// Positions of the (few) mobile nodes now, asked once per simulated instant: a burst of
   /// replies sent at one instant scans them many times.
   const std::vector<Vec2>& mobile_positions_now();
@@ -351,16 +353,17 @@ void Radio::for_each_mobile_within(const Vec2& center, double range, Visit&& vis
   };
   const double radius = range + margin;
   if (skip_b_distance >= 0.0) {
-    // The grid's own test on the indexed positions, over the addressee's neighbourhood.
-    const NearAddressee& near = near_addressee(skip_b, radius + skip_b_distance);
-    const double cx = center.x(), cy = center.y(), radius2 = radius * radius;
-    const double* const xs = near.xs.data();
-    const double* const ys = near.ys.data();
-    for (std::size_t k = 0; k < near.ids.size(); ++k) {
-      const double ddx = xs[k] - cx, ddy = ys[k] - cy;
-      if (ddx * ddx + ddy * ddy <= radius2) consider(near.ids[k]);
+    if (const NearAddressee* near = near_addressee(skip_b, radius + skip_b_distance)) {
+      // The grid's own test on the indexed positions, over the addressee's neighbourhood.
+      const double cx = center.x(), cy = center.y(), radius2 = radius * radius;
+      const double* const xs = near->xs.data();
+      const double* const ys = near->ys.data();
+      for (std::size_t k = 0; k < near->ids.size(); ++k) {
+        const double ddx = xs[k] - cx, ddy = ys[k] - cy;
+        if (ddx * ddx + ddy * ddy <= radius2) consider(near->ids[k]);
+      }
+      return;
     }
-    return;
   }
   mobile_grid_.for_each_within(center, radius, [&](NodeId id, const Vec2&, double) { consider(id); });
 }
