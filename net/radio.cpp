@@ -163,6 +163,7 @@ void Radio::materialize() const {
       bytes += rx_bytes_diff_[t * (n + 1) + k];
       rx_count_[t * n + k] += count;
       rx_bytes_[t * n + k] += bytes;
+      heard_bytes_[k] += bytes;  // a bulk broadcast's receivers heard what they received
     }
   }
   std::fill(rx_count_diff_.begin(), rx_count_diff_.end(), 0);
@@ -413,8 +414,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
       __builtin_prefetch(heard_diff + a, 1);
       __builtin_prefetch(heard_diff + c, 1);
     };
-    auto prefetch_all = [heard_diff, count_diff, bytes_diff](std::uint32_t a, std::uint32_t c) {
-      for (std::uint64_t* diff : {heard_diff, count_diff, bytes_diff}) {
+    auto prefetch_both = [count_diff, bytes_diff](std::uint32_t a, std::uint32_t c) {
+      for (std::uint64_t* diff : {count_diff, bytes_diff}) {
         __builtin_prefetch(diff + a, 1);
         __builtin_prefetch(diff + c, 1);
       }
@@ -427,9 +428,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
         heard_diff[c] -= heard_booking;
       }, prefetch);
     } else if (bulk) {
+      // A broadcast's bytes heard are its bytes received (folded into both by materialize).
       line_index_.for_each_run_within(center, range, [&](std::uint32_t a, std::uint32_t c) {
-        heard_diff[a] += heard_booking;
-        heard_diff[c] -= heard_booking;
         hearers += c - a;
         ++count_diff[a];
         --count_diff[c];
@@ -439,7 +439,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
         if (collect)
           for (std::uint32_t k = a; k < c; ++k)
             if (k != source_hot && (everyone_wants || (interest[k] & type_bit))) receivers.push_back(slots[k]);
-      }, prefetch_all);
+      }, prefetch_both);
     } else {
       line_index_.for_each_run_within(center, range, [&](std::uint32_t a, std::uint32_t c) {
         for (std::uint32_t k = a; k < c; ++k) {
@@ -460,10 +460,11 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
         if (hot >= static_count || !(hot == source_hot ? range >= 0.0 : line_index_.within(hot, center, range))) continue;
         // Booked out as a run of one slot, in the same difference words the runs went to (the
         // sender's neighbours wrote there just before: no cache miss on the folded counters).
-        heard_diff[hot] -= heard_booking;
-        heard_diff[hot + 1] += heard_booking;
         --hearers;
-        if (is_broadcast) {
+        if (!is_broadcast) {
+          heard_diff[hot] -= heard_booking;
+          heard_diff[hot + 1] += heard_booking;
+        } else {
           --count_diff[hot];
           ++count_diff[hot + 1];
           bytes_diff[hot] -= bytes;
