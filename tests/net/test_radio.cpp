@@ -62,6 +62,23 @@ struct Rig {
 
 net::Payload beacon(NodeId from) { return net::Beacon{from, Vec2{0, 0}}; }
 
+// A side × side cell-centred sensor grid as nodes 0 … side²−1 (indexed as lines by the radio),
+// then `robots` robots at random places moving at up to `speed` per axis.
+void add_grid_and_robots(Rig& rig, int side, int robots, double speed, std::uint64_t seed, std::uint32_t sensor_interest) {
+  for (int j = 0; j < side; ++j)
+    for (int i = 0; i < side; ++i) {
+      const auto id = static_cast<std::uint32_t>(j * side + i);
+      rig.radio.add_static_node(sim::node_id(id), Vec2{(i + 0.5) / side, (j + 0.5) / side}, id);
+      rig.radio.set_interest(sim::node_id(id), sensor_interest);
+    }
+  sim::RandomStream rng(seed);
+  for (int r = 0; r < robots; ++r) {
+    const auto id = static_cast<std::uint32_t>(side * side + r);
+    rig.motion.lines[id] = {Vec2{rng.uniform01(), rng.uniform01()}, Vec2{rng.uniform(-speed, speed), rng.uniform(-speed, speed)}};
+    rig.radio.add_mobile_node(sim::node_id(id), id);
+  }
+}
+
 }  // namespace
 
 TEST_CASE("broadcast deliveries equal a brute-force range check, static and moving nodes",
@@ -354,18 +371,8 @@ TEST_CASE("frames booked in bulk on a sensor grid give every node exactly the br
   auto& [sim, radio, rec, motion] = rig;
   const int side = 30, robots = 40, sensors = side * side;
   const std::uint32_t sensor_interest = 1u << static_cast<unsigned>(net::MessageType::position);
-  for (int j = 0; j < side; ++j)
-    for (int i = 0; i < side; ++i) {
-      const auto id = static_cast<std::uint32_t>(j * side + i);
-      radio.add_static_node(sim::node_id(id), Vec2{(i + 0.5) / side, (j + 0.5) / side}, id);
-      radio.set_interest(sim::node_id(id), sensor_interest);
-    }
-  sim::RandomStream rng(11);
-  for (int r = 0; r < robots; ++r) {
-    const auto id = static_cast<std::uint32_t>(sensors + r);
-    motion.lines[id] = {Vec2{rng.uniform01(), rng.uniform01()}, Vec2{rng.uniform(-0.2, 0.2), rng.uniform(-0.2, 0.2)}};
-    radio.add_mobile_node(sim::node_id(id), id);
-  }
+  add_grid_and_robots(rig, side, robots, 0.2, 11, sensor_interest);
+  sim::RandomStream rng(12);
   const int n = sensors + robots;
   std::vector<std::uint64_t> heard(n, 0), overheard(n, 0), delivered(n, 0);
   auto send = [&](std::uint32_t src, std::uint32_t dst, double range, int kind) {
@@ -419,17 +426,8 @@ TEST_CASE("bursts of unicasts to one moving robot at one instant are overheard e
   auto& [sim, radio, rec, motion] = rig;
   const int side = 32, robots = 300, sensors = side * side;  // robots above the linear-scan limit
   static_assert(300 > net::Radio::kMobileScanLimit);
-  for (int j = 0; j < side; ++j)
-    for (int i = 0; i < side; ++i) {
-      const auto id = static_cast<std::uint32_t>(j * side + i);
-      radio.add_static_node(sim::node_id(id), Vec2{(i + 0.5) / side, (j + 0.5) / side}, id);
-    }
-  sim::RandomStream rng(21);
-  for (int r = 0; r < robots; ++r) {
-    const auto id = static_cast<std::uint32_t>(sensors + r);
-    motion.lines[id] = {Vec2{rng.uniform01(), rng.uniform01()}, Vec2{rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3)}};
-    radio.add_mobile_node(sim::node_id(id), id);
-  }
+  add_grid_and_robots(rig, side, robots, 0.3, 21, 0xFFFFFFFFu);
+  sim::RandomStream rng(22);
   const int n = sensors + robots;
   std::vector<std::uint64_t> overheard(n, 0);
   auto send = [&](std::uint32_t src, std::uint32_t dst) {
