@@ -26,6 +26,15 @@ Radio::Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t
   for (std::uint32_t bytes = 0; bytes < kAirtimeTableBytes; ++bytes) airtime_table_[bytes] = compute_airtime(bytes);
 }
 
+Radio::~Radio() {
+  if (!overhearing_thread_.joinable()) return;
+  drain_overhearing();
+  worker_stop_.store(true);
+  jobs_ready_.store(2);  // neither 0 nor 1: wakes the thread to see the stop
+  jobs_ready_.notify_one();
+  overhearing_thread_.join();
+}
+
 void Radio::add_node(NodeId id, Node node, bool mobile, const Vec2& position) {
   MASNET_ASSERT(sim::index(id) == nodes_.size(), "node ids are dense from 0");
   node.added_at = simulator_.now();
@@ -145,7 +154,82 @@ void Radio::prepare_index() {
   index_dirty_ = false;
 }
 
+std::uint64_t Radio::book_overhearing(const OverhearingJob& job) const {
+  std::uint64_t* const heard_diff = heard_diff_.data();
+  const std::uint64_t booking = job.booking;
+  const Vec2 center{job.cx, job.cy};
+  // Overhearing is one packed word per run end, each prefetched with the line's estimate. The
+  // lambdas capture no references, so nothing is reloaded after each write.
+  std::uint64_t hearers = line_index_.for_each_run_within(center, job.range, [heard_diff, booking](std::uint32_t a, std::uint32_t c) {
+    heard_diff[a] += booking;
+    heard_diff[c] -= booking;
+  }, [heard_diff](std::uint32_t a, std::uint32_t c) {
+    __builtin_prefetch(heard_diff + a, 1);
+    __builtin_prefetch(heard_diff + c, 1);
+  });
+  // The runs included the sender (at the center: in every run of a valid range) and maybe a
+  // static addressee: take them out again, as runs of one slot in the words just written.
+  const auto static_count = static_cast<std::uint32_t>(static_ids_.size());
+  for (const std::uint32_t hot : {job.source_hot, job.destination_hot}) {
+    if (hot >= static_count || !(hot == job.source_hot ? job.range >= 0.0 : line_index_.within(hot, center, job.range))) continue;
+    heard_diff[hot] -= booking;
+    heard_diff[hot + 1] += booking;
+    --hearers;
+  }
+  return hearers;
+}
+
+void Radio::hand_over_jobs() const {
+  if (jobs_filling_.empty()) return;
+  // Wait for the thread to finish the last hand-over (it normally has: it books a batch in a
+  // fraction of the time this thread takes to gather one).
+  while (jobs_ready_.load(std::memory_order_acquire) == 1) {
+#if defined(__SSE2__)
+    _mm_pause();
+#endif
+  }
+  jobs_handed_.swap(jobs_filling_);
+  jobs_filling_.clear();
+  jobs_ready_.store(1, std::memory_order_release);
+  jobs_ready_.notify_one();
+}
+
+void Radio::overhearing_worker() {
+  for (;;) {
+    // Spin a while (hand-overs come every few hundred microseconds while replies flow), then
+    // sleep until the next one.
+    std::uint32_t ready = jobs_ready_.load(std::memory_order_acquire);
+    for (int spin = 0; ready == 0 && spin < 20000; ++spin) {
+#if defined(__SSE2__)
+      _mm_pause();
+#endif
+      ready = jobs_ready_.load(std::memory_order_acquire);
+    }
+    if (ready == 0) {
+      jobs_ready_.wait(0, std::memory_order_acquire);
+      continue;
+    }
+    if (ready == 2) return;  // stop
+    for (const OverhearingJob& job : jobs_handed_)
+      worker_heard_bytes_ += book_overhearing(job) * (job.booking & (kOneOverheard - 1));
+    jobs_ready_.store(0, std::memory_order_release);
+  }
+}
+
+void Radio::drain_overhearing() const {
+  if (!overhearing_thread_.joinable()) return;
+  hand_over_jobs();
+  while (jobs_ready_.load(std::memory_order_acquire) == 1) {
+#if defined(__SSE2__)
+    _mm_pause();
+#endif
+  }
+  total_heard_bytes_ += worker_heard_bytes_;
+  worker_heard_bytes_ = 0;
+}
+
 void Radio::materialize() const {
+  drain_overhearing();
   if (!diffs_pending_) return;
   const std::size_t n = heard_bytes_.size();
   std::uint64_t packed = 0;
@@ -400,7 +484,6 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     const NodeId* const slots = line_index_.ids().data();
     std::uint64_t* const count_diff = rx_count_diff_.data() + type_index * (static_cast<std::size_t>(heard_bytes_.size()) + 1);
     std::uint64_t* const bytes_diff = rx_bytes_diff_.data() + type_index * (static_cast<std::size_t>(heard_bytes_.size()) + 1);
-    std::uint64_t* const heard_diff = heard_diff_.data();
     if (bulk) {
       if (pending_bulk_bytes_ + bytes >= kOneOverheard || pending_bulk_frames_ + 1 >= (std::uint64_t{1} << (64 - kHeardBytesBits)))
         materialize();  // the packed sums would overflow
@@ -410,10 +493,6 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     const std::uint64_t heard_booking = bytes + (is_broadcast ? 0 : kOneOverheard);
     // Prefetch the difference-array entries a bulk booking will update (a broadcast also
     // books its receptions by type).
-    auto prefetch = [heard_diff](std::uint32_t a, std::uint32_t c) {
-      __builtin_prefetch(heard_diff + a, 1);
-      __builtin_prefetch(heard_diff + c, 1);
-    };
     auto prefetch_both = [count_diff, bytes_diff](std::uint32_t a, std::uint32_t c) {
       for (std::uint64_t* diff : {count_diff, bytes_diff}) {
         __builtin_prefetch(diff + a, 1);
@@ -421,12 +500,15 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
       }
     };
     if (bulk && !is_broadcast) {
-      // Unicasts, the bulk of the traffic: overhearing is one packed word per run end. The
-      // lambda captures no references, so nothing is reloaded after each write.
-      hearers += line_index_.for_each_run_within(center, range, [heard_diff, heard_booking](std::uint32_t a, std::uint32_t c) {
-        heard_diff[a] += heard_booking;
-        heard_diff[c] -= heard_booking;
-      }, prefetch);
+      // Unicasts, the bulk of the traffic: one job each (see OverhearingJob).
+      const OverhearingJob job{center.x(), center.y(), range, heard_booking, source_hot, destination_hot};
+      if (params_.overhearing_thread) {
+        if (!overhearing_thread_.joinable()) overhearing_thread_ = std::thread([this] { overhearing_worker(); });
+        jobs_filling_.push_back(job);
+        if (jobs_filling_.size() >= kJobsPerHandOver) hand_over_jobs();
+      } else {
+        hearers += book_overhearing(job);
+      }
     } else if (bulk) {
       // A broadcast's bytes heard are its bytes received (folded into both by materialize).
       line_index_.for_each_run_within(center, range, [&](std::uint32_t a, std::uint32_t c) {
@@ -460,11 +542,9 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
         if (hot >= static_count || !(hot == source_hot ? range >= 0.0 : line_index_.within(hot, center, range))) continue;
         // Booked out as a run of one slot, in the same difference words the runs went to (the
         // sender's neighbours wrote there just before: no cache miss on the folded counters).
+        if (!is_broadcast) continue;  // booked out by its job
         --hearers;
-        if (!is_broadcast) {
-          heard_diff[hot] -= heard_booking;
-          heard_diff[hot + 1] += heard_booking;
-        } else {
+        {
           --count_diff[hot];
           ++count_diff[hot + 1];
           bytes_diff[hot] -= bytes;

@@ -4,10 +4,12 @@
 // Bernoulli loss per reception, per-node counters by message type, and the energy ledger of
 // SPEC §4. It knows message formats, never protocol logic. See docs/radio-and-energy.md.
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cstdint>
 #include <deque>
 #include <span>
+#include <thread>
 #include <utility>
 #include <vector>
 #if defined(__SSE2__)
@@ -35,6 +37,10 @@ struct RadioParams {
   double jitter_s = 0.0;           ///< extra delay per reception, uniform in [0, jitter)
   RadioLevel level = RadioLevel::airtime;
   double loss = 0.0;               ///< probability that a reception is lost
+  /// Book the overhearing of sensors' bulk unicasts (row runs into the difference words) on a
+  /// second thread. Results are identical (integer sums, in any order, read only after it has
+  /// caught up); `masnet run` sets it on machines with two cores or more. Not a scenario key.
+  bool overhearing_thread = false;
   EnergyParams energy;
   MessageSizes sizes;
 };
@@ -87,6 +93,9 @@ class Radio {
   static constexpr std::size_t kKeptBatchCapacity = 1u << 14;
 
   Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t seed);
+  ~Radio();
+  Radio(const Radio&) = delete;
+  Radio& operator=(const Radio&) = delete;
 
   /// Registers node ids densely from 0: a static node at `position`, or a mobile node whose
   /// position `mobile_positions` answers. `random_key` keys this node's loss and jitter
@@ -133,6 +142,7 @@ class Radio {
   /// Radio energy booked so far over all nodes (idle drain excluded), joules.
   double total_tx_energy_j() const { return total_tx_j_; }
   double total_rx_energy_j() const {
+    drain_overhearing();
     return rx_energy_j(params_.energy, 8.0 * static_cast<double>(total_heard_bytes_));
   }
   /// Per-node stats, idle energy brought up to now.
@@ -259,7 +269,7 @@ class Radio {
   std::vector<TxCounter> tx_;  // [type][node]
   std::array<TypeCounters, kMessageTypeCount> totals_{};
   double total_tx_j_ = 0.0;
-  std::uint64_t total_heard_bytes_ = 0;
+  mutable std::uint64_t total_heard_bytes_ = 0;
   // E_rx is linear in bits, so a node's receive energy is E_elec·8·(bytes it heard).
   // `mutable`: bulk bookings are kept as difference arrays over slots and folded in when read.
   mutable std::vector<std::uint64_t> heard_bytes_, overheard_count_;  // [hot]
@@ -276,6 +286,31 @@ class Radio {
   mutable std::uint64_t pending_bulk_frames_ = 0, pending_bulk_bytes_ = 0;
   mutable std::vector<std::uint64_t> rx_count_diff_, rx_bytes_diff_;  // [type][hot + 1]
   mutable bool diffs_pending_ = false;
+
+  // The overhearing of a bulk unicast: its static hearers' runs, the sender and a static
+  // addressee booked out again. Done inline, or (params.overhearing_thread) by a second thread:
+  // jobs gather in `jobs_filling_` and are handed over a few hundred at a time, the thread books
+  // them while this one goes on, and every reader of the difference words or of
+  // total_heard_bytes_ waits for it first (drain_overhearing). Only that thread writes
+  // heard_diff_ while it runs.
+  struct OverhearingJob {
+    double cx = 0.0, cy = 0.0, range = 0.0;
+    std::uint64_t booking = 0;  // packed heard bytes + one overheard frame
+    std::uint32_t source_hot = 0, destination_hot = 0;
+  };
+  /// Books `job`; returns its static hearers.
+  std::uint64_t book_overhearing(const OverhearingJob& job) const;
+  /// Hands the gathered jobs to the thread (waiting until it is done with the last ones).
+  void hand_over_jobs() const;
+  void overhearing_worker();
+  /// Hands over what is gathered, waits until the thread has booked it, adds its heard bytes.
+  void drain_overhearing() const;
+  static constexpr std::size_t kJobsPerHandOver = 512;
+  mutable std::vector<OverhearingJob> jobs_filling_, jobs_handed_;
+  alignas(64) mutable std::atomic<std::uint32_t> jobs_ready_{0};  // 1: jobs_handed_ is the thread's
+  mutable std::uint64_t worker_heard_bytes_ = 0;                   // the thread's, until drained
+  std::atomic<bool> worker_stop_{false};
+  std::thread overhearing_thread_;
 
   std::vector<NodeId> static_ids_, mobile_ids_;
   SpatialGrid static_grid_, mobile_grid_;

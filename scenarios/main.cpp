@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <thread>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -52,7 +53,11 @@ int command_run(const RunArgs& args) {
     std::fprintf(stderr, "%s\n", problem.c_str());
     return kBadInput;
   }
-  Run run(def);
+  // A lone run may use a second core for the radio's overhearing bookkeeping (the same results;
+  // sweeps keep their cores for whole runs).
+  ScenarioDef run_def = def;
+  run_def.world.radio.overhearing_thread = std::thread::hardware_concurrency() >= 2;
+  Run run(run_def);
   {
     ProgressBar bar(def.duration_s, !args.quiet && ProgressBar::stderr_is_terminal());
     run.execute([&](double t, std::uint64_t events) { bar.update(t, events); });

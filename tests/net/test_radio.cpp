@@ -367,6 +367,7 @@ TEST_CASE("frames booked in bulk on a sensor grid give every node exactly the br
   // unicasts with their overhearers (bulk).
   net::RadioParams params;
   params.max_range = 0.5;
+  params.overhearing_thread = GENERATE(false, true);  // booked inline, or by the second thread
   Rig rig(params, 3);
   auto& [sim, radio, rec, motion] = rig;
   const int side = 30, robots = 40, sensors = side * side;
@@ -422,6 +423,7 @@ TEST_CASE("bursts of unicasts to one moving robot at one instant are overheard e
   // at one instant (it is rebuilt), must give the counts a per-frame range check gives.
   net::RadioParams params;
   params.max_range = 0.6;
+  params.overhearing_thread = GENERATE(false, true);
   Rig rig(params, 5);
   auto& [sim, radio, rec, motion] = rig;
   const int side = 32, robots = 300, sensors = side * side;  // robots above the linear-scan limit
