@@ -154,7 +154,7 @@ void Radio::prepare_index() {
   index_dirty_ = false;
 }
 
-std::uint64_t Radio::book_overhearing(const OverhearingJob& job) const {
+[[gnu::always_inline]] inline std::uint64_t Radio::book_overhearing(const OverhearingJob& job) const {
   std::uint64_t* const heard_diff = heard_diff_.data();
   const std::uint64_t booking = job.booking;
   const Vec2 center{job.cx, job.cy};
@@ -502,7 +502,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     if (bulk && !is_broadcast) {
       // Unicasts, the bulk of the traffic: one job each (see OverhearingJob).
       const OverhearingJob job{center.x(), center.y(), range, heard_booking, source_hot, destination_hot};
-      if (params_.overhearing_thread) {
+      if (params_.overhearing_thread && static_count >= params_.overhearing_thread_min_nodes) {
         if (!overhearing_thread_.joinable()) overhearing_thread_ = std::thread([this] { overhearing_worker(); });
         jobs_filling_.push_back(job);
         if (jobs_filling_.size() >= kJobsPerHandOver) hand_over_jobs();

@@ -368,6 +368,7 @@ TEST_CASE("frames booked in bulk on a sensor grid give every node exactly the br
   net::RadioParams params;
   params.max_range = 0.5;
   params.overhearing_thread = GENERATE(false, true);  // booked inline, or by the second thread
+  params.overhearing_thread_min_nodes = 0;
   Rig rig(params, 3);
   auto& [sim, radio, rec, motion] = rig;
   const int side = 30, robots = 40, sensors = side * side;
@@ -424,6 +425,7 @@ TEST_CASE("bursts of unicasts to one moving robot at one instant are overheard e
   net::RadioParams params;
   params.max_range = 0.6;
   params.overhearing_thread = GENERATE(false, true);
+  params.overhearing_thread_min_nodes = 0;
   Rig rig(params, 5);
   auto& [sim, radio, rec, motion] = rig;
   const int side = 32, robots = 300, sensors = side * side;  // robots above the linear-scan limit
