@@ -29,7 +29,6 @@ Radio::Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t
 Radio::~Radio() {
   if (!overhearing_thread_.joinable()) return;
   drain_overhearing();
-  worker_stop_.store(true);
   jobs_ready_.store(2);  // neither 0 nor 1: wakes the thread to see the stop
   jobs_ready_.notify_one();
   overhearing_thread_.join();
@@ -306,10 +305,7 @@ const Radio::NearAddressee* Radio::near_addressee(NodeId addressee, double exten
     near_.addressee = addressee;
     near_.at = now;
     near_.index_generation = mobile_index_generation_;
-    near_.reach = -1.0;
-    near_.xs.clear();
-    near_.ys.clear();
-    near_.ids.clear();
+    near_.reach = -1.0;  // nothing gathered yet
     return nullptr;
   }
   if (needed <= near_.reach) return &near_;
@@ -491,8 +487,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
       pending_bulk_bytes_ += bytes;
     }
     const std::uint64_t heard_booking = bytes + (is_broadcast ? 0 : kOneOverheard);
-    // Prefetch the difference-array entries a bulk booking will update (a broadcast also
-    // books its receptions by type).
+    // A bulk broadcast prefetches the difference-array entries it will update (its receptions
+    // by type); a unicast's job does its own.
     auto prefetch_both = [count_diff, bytes_diff](std::uint32_t a, std::uint32_t c) {
       for (std::uint64_t* diff : {count_diff, bytes_diff}) {
         __builtin_prefetch(diff + a, 1);
@@ -535,22 +531,16 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     }
     if (bulk) {
       diffs_pending_ = true;
-      // The runs included the sender (and a static addressee): take them out again.
-      for (const std::uint32_t hot : {source_hot, destination_hot}) {
-        // A static sender sits at the center (distance exactly 0): in every run of a valid
-        // range, and its coordinates need not be fetched to know it.
-        if (hot >= static_count || !(hot == source_hot ? range >= 0.0 : line_index_.within(hot, center, range))) continue;
-        // Booked out as a run of one slot, in the same difference words the runs went to (the
-        // sender's neighbours wrote there just before: no cache miss on the folded counters).
-        if (!is_broadcast) continue;  // booked out by its job
+      // A broadcast's runs included its sender (a unicast's job books its own out): take it out
+      // again, as a run of one slot in the difference words the runs just wrote. A static
+      // sender sits at the center (distance exactly 0): in every run of a valid range.
+      if (is_broadcast && source_hot < static_count && range >= 0.0) {
         --hearers;
-        {
-          --count_diff[hot];
-          ++count_diff[hot + 1];
-          bytes_diff[hot] -= bytes;
-          bytes_diff[hot + 1] += bytes;
-          --received;
-        }
+        --count_diff[source_hot];
+        ++count_diff[source_hot + 1];
+        bytes_diff[source_hot] -= bytes;
+        bytes_diff[source_hot + 1] += bytes;
+        --received;
       }
     }
   } else {

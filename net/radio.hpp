@@ -37,7 +37,7 @@ struct RadioParams {
   double jitter_s = 0.0;           ///< extra delay per reception, uniform in [0, jitter)
   RadioLevel level = RadioLevel::airtime;
   double loss = 0.0;               ///< probability that a reception is lost
-  /// Book the overhearing of sensors' bulk unicasts (row runs into the difference words) on a
+  /// Book the overhearing of bulk unicasts (row runs into the difference words) on a
   /// second thread. Results are identical (integer sums, in any order, read only after it has
   /// caught up); `masnet run` sets it on machines with two cores or more. Not a scenario key.
   bool overhearing_thread = false;
@@ -310,9 +310,8 @@ class Radio {
   void drain_overhearing() const;
   static constexpr std::size_t kJobsPerHandOver = 512;
   mutable std::vector<OverhearingJob> jobs_filling_, jobs_handed_;
-  alignas(64) mutable std::atomic<std::uint32_t> jobs_ready_{0};  // 1: jobs_handed_ is the thread's
+  alignas(64) mutable std::atomic<std::uint32_t> jobs_ready_{0};  // 0 idle, 1 jobs_handed_ is the thread's, 2 stop
   mutable std::uint64_t worker_heard_bytes_ = 0;                   // the thread's, until drained
-  std::atomic<bool> worker_stop_{false};
   std::thread overhearing_thread_;
 
   std::vector<NodeId> static_ids_, mobile_ids_;
