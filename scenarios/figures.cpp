@@ -13,9 +13,9 @@
 #include <cairo.h>
 #include <fmt/compile.h>
 #include <fmt/format.h>
-#include <fmt/os.h>
 
 #include "agents/targets.hpp"
+#include "scenarios/output_file.hpp"
 
 namespace masnet::scenarios {
 namespace fs = std::filesystem;
@@ -838,7 +838,7 @@ RunData load_run_data(const fs::path& dir) {
 }
 
 void write_sensors_csv(const fs::path& path, const std::vector<agents::SensorDef>& sensors) {
-  auto out = fmt::output_file(path.string());
+  OutputFile out(path);
   out.print("index,x,y,area\n");
   // Compiled formats into a buffer written in large pieces (a million sensors: 27 MB).
   fmt::memory_buffer rows;
@@ -846,11 +846,12 @@ void write_sensors_csv(const fs::path& path, const std::vector<agents::SensorDef
     fmt::format_to(std::back_inserter(rows), FMT_COMPILE("{},{},{},{}\n"), i, sensors[i].position.x(),
                    sensors[i].position.y(), sensors[i].area);
     if (rows.size() >= std::size_t{1} << 16) {
-      out.print("{}", fmt::string_view(rows.data(), rows.size()));
+      out.write(std::string_view(rows.data(), rows.size()));
       rows.clear();
     }
   }
-  out.print("{}", fmt::string_view(rows.data(), rows.size()));
+  out.write(std::string_view(rows.data(), rows.size()));
+  out.close();
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -11,9 +11,12 @@
 #include "scenarios/figures.hpp"
 #include "scenarios/progress.hpp"
 #include "scenarios/report.hpp"
+#include "scenarios/output_file.hpp"
 #include "scenarios/run.hpp"
+#include "scenarios/run_directory.hpp"
 #include "scenarios/scenario.hpp"
 #include "scenarios/sweep_command.hpp"
+#include "sim/cpus.hpp"
 
 using namespace masnet::scenarios;
 
@@ -50,44 +53,66 @@ int command_run(const RunArgs& args) {
       args.out.empty() ? "runs/" + def.name + "-seed" + std::to_string(def.seed) : args.out;
   // Refuse before simulating: a long run must not end in "cannot write".
   if (std::string problem = check_run_directory(out, run_key(def), args.force); !problem.empty()) {
-    std::fprintf(stderr, "%s\n", problem.c_str());
+    std::fprintf(stderr, "masnet run: %s\n", problem.c_str());
     return kBadInput;
   }
   // A lone run may use a second core for the radio's overhearing bookkeeping (the same results;
-  // sweeps keep their cores for whole runs).
+  // sweeps keep their cores for whole runs) — only when this process may run on two CPUs:
+  // pinned to one, the two threads would only take turns.
   ScenarioDef run_def = def;
-  run_def.world.radio.overhearing_thread = std::thread::hardware_concurrency() >= 2;
+  run_def.world.radio.overhearing_thread = masnet::sim::allowed_cpu_count() >= 2;
   Run run(run_def);
   {
     ProgressBar bar(def.duration_s, !args.quiet && ProgressBar::stderr_is_terminal());
     run.execute([&](double t, std::uint64_t events) { bar.update(t, events); });
   }
-  publish_run_directory(out, [&](const std::string& dir) {
-    run.write_files(dir);
-    write_sensors_csv(std::filesystem::path(dir) / "sensors.csv", def.world.sensors);
-  });
+  // Figures and report are drawn into the staging folder too, so the published directory is
+  // complete or absent. A drawing failure that is not a write failure keeps the run's data
+  // (published without figures) and `masnet render` can finish the job.
+  std::string render_error;
+  std::filesystem::path report;
+  try {
+    publish_run_directory(out, [&](const std::string& dir) {
+      run.write_files(dir);
+      write_sensors_csv(std::filesystem::path(dir) / "sensors.csv", def.world.sensors);
+      if (!def.output.figures && !def.output.report) return;
+      RenderOptions render;
+      render.figures = def.output.figures;
+      render.report = def.output.report;
+      try {
+        if (!render_run_directory(dir, render).empty()) report = "report.html";
+      } catch (const OutputError&) {
+        throw;
+      } catch (const std::filesystem::filesystem_error&) {
+        throw;
+      } catch (const std::exception& e) {
+        render_error = e.what();
+        std::error_code ignored;
+        std::filesystem::remove_all(std::filesystem::path(dir) / "figures", ignored);
+        std::filesystem::remove(std::filesystem::path(dir) / "report.html", ignored);
+      }
+    });
+  } catch (const std::exception& e) {
+    std::fprintf(stderr,
+                 "masnet: cannot write the run directory '%s': %s\n"
+                 "masnet: nothing was written (the partial copy was removed)\n",
+                 out.c_str(), e.what());
+    return kInternalError;
+  }
   if (!args.quiet) {
     std::printf("%s: %.3f s simulated in %.3f s wall, %llu events, fingerprint %s\n",
                 def.name.c_str(), def.duration_s, run.wall_time_s(),
                 static_cast<unsigned long long>(run.events()), run.fingerprint().c_str());
-    std::printf("run directory: %s\n", std::filesystem::absolute(out).string().c_str());
+    std::printf("run directory: %s\n", normalised_directory(out).string().c_str());
   }
-  if (!def.output.figures && !def.output.report) return 0;
-  // Drawn from the published files, after publishing: a failure here keeps the run's data,
-  // and `masnet render` can finish the job.
-  RenderOptions render;
-  render.figures = def.output.figures;
-  render.report = def.output.report;
-  std::filesystem::path report;
-  try {
-    report = render_run_directory(out, render);
-  } catch (const std::exception& e) {
+  if (!render_error.empty()) {
     std::fprintf(stderr,
                  "masnet: the run's data are in '%s', but its figures or report failed: %s\n",
-                 out.c_str(), e.what());
+                 out.c_str(), render_error.c_str());
     return kInternalError;
   }
-  if (!args.quiet && !report.empty()) std::printf("report: %s\n", report.string().c_str());
+  if (!args.quiet && !report.empty())
+    std::printf("report: %s\n", (normalised_directory(out) / report).string().c_str());
   return 0;
 }
 
@@ -110,7 +135,16 @@ int command_render(const RenderArgs& args) {
     std::fprintf(stderr, "masnet render: %s\n", e.what());
     return kBadInput;
   }
-  const std::filesystem::path report = render_run(*data, options);
+  std::filesystem::path report;
+  try {
+    report = render_run(*data, options);
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "masnet render: %s\n", e.what());
+    return kInternalError;
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::fprintf(stderr, "masnet render: %s\n", e.what());
+    return kInternalError;
+  }
   if (!args.quiet) std::printf("report: %s\n", report.string().c_str());
   return 0;
 }

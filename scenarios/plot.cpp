@@ -5,7 +5,6 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -15,6 +14,8 @@
 #include <cairo-svg.h>
 #include <cairo.h>
 #include <fmt/format.h>
+
+#include "scenarios/output_file.hpp"
 
 namespace masnet::scenarios::plot {
 namespace {
@@ -843,9 +844,7 @@ void write_figure(const std::filesystem::path& stem, double width, double height
     cairo_surface_destroy(surface);
     check(drawn, svg_path);
     check(finished, svg_path);
-    std::ofstream out(svg_path, std::ios::binary);
-    out << finish_svg(std::move(svg), classes);
-    if (!out) throw std::runtime_error("cannot write '" + svg_path.string() + "'");
+    write_file(svg_path, finish_svg(std::move(svg), classes));
   }
   {
     const int w = static_cast<int>(std::lround(width * png_scale)),
@@ -856,11 +855,16 @@ void write_figure(const std::filesystem::path& stem, double width, double height
     paint(cr);
     const cairo_status_t drawn = cairo_status(cr);
     cairo_destroy(cr);
-    const cairo_status_t written = drawn == CAIRO_STATUS_SUCCESS
-                                       ? cairo_surface_write_to_png(surface, png_path.c_str())
-                                       : drawn;
+    // Encoded in memory and written by write_file, whose errors name the system's reason
+    // (Cairo's own file writer says only "error while writing to output stream").
+    std::string png;
+    const cairo_status_t encoded =
+        drawn == CAIRO_STATUS_SUCCESS
+            ? cairo_surface_write_to_png_stream(surface, append_to_string, &png)
+            : drawn;
     cairo_surface_destroy(surface);
-    check(written, png_path);
+    check(encoded, png_path);
+    write_file(png_path, png);
   }
 }
 

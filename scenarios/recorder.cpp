@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iterator>
 #include <limits>
 
 #include <fmt/compile.h>
 #include <fmt/format.h>
-#include <fmt/os.h>
+
+#include "scenarios/output_file.hpp"
 
 namespace masnet::scenarios {
 namespace {
@@ -236,7 +236,7 @@ void Recorder::on_battery_empty(sim::NodeId node) {
 }
 
 void Recorder::write_timeseries(const std::string& path) const {
-  auto out = fmt::output_file(path);
+  OutputFile out(path);
   const std::size_t targets = def_.world.field.kind == agents::FieldKind::acoustic ? def_.world.field.targets.size() : 0;
   out.print("t_s,coverage_cost,mean_dist_to_centroid,max_dist_to_centroid,mean_radius,messages,bytes,energy_j,"
             "updates,cell_correctness");
@@ -255,18 +255,20 @@ void Recorder::write_timeseries(const std::string& path) const {
     if (pollution && has_baseline_) out.print(",{},{}", s.pollution_total_baseline, s.pollution_integral_baseline);
     out.print("\n");
   }
+  out.close();
 }
 
 void Recorder::write_trajectories(const std::string& path) const {
-  auto out = fmt::output_file(path);
+  OutputFile out(path);
   out.print("t_s,robot,x,y,vx,vy,radius,cx,cy\n");
   for (const TrajectoryRow& r : trajectories_)
     out.print("{},{},{},{},{},{},{},{},{}\n", r.t_s, r.robot, r.position.x(), r.position.y(), r.velocity.x(),
               r.velocity.y(), r.radius, r.target.x(), r.target.y());
+  out.close();
 }
 
 void Recorder::write_updates(const std::string& path) const {
-  auto out = fmt::output_file(path);
+  OutputFile out(path);
   out.print("robot,update,t_start_s,t_end_s,latency_s,rounds,radius,truncated,delayed,no_mass,readings,"
             "neighbours,correct,cx,cy");
   for (std::size_t t = 0; t < net::kMessageTypeCount; ++t) out.print(",{0}_count,{0}_bytes", net::kMessageTypeNames[t]);
@@ -280,10 +282,11 @@ void Recorder::write_updates(const std::string& path) const {
     for (const auto& tally : r.messages) out.print(",{},{}", tally.count, tally.bytes);
     out.print("\n");
   }
+  out.close();
 }
 
 void Recorder::write_nodes(const std::string& path) const {
-  auto out = fmt::output_file(path);
+  OutputFile out(path);
   out.print("node,role,index,x,y,alive,died_at_s,energy_j,energy_tx_j,energy_rx_j,energy_idle_j,tx_count,tx_bytes,"
             "rx_count,rx_bytes,overheard_count,heard_bytes,lost_count,unreachable_count,refused_count");
   for (std::size_t t = 0; t < net::kMessageTypeCount; ++t) out.print(",tx_{0},rx_{0}", net::kMessageTypeNames[t]);
@@ -319,16 +322,16 @@ void Recorder::write_nodes(const std::string& path) const {
     }
     rows.push_back('\n');
     if (rows.size() >= kWriteChunkBytes) {
-      out.print("{}", fmt::string_view(rows.data(), rows.size()));
+      out.write(std::string_view(rows.data(), rows.size()));
       rows.clear();
     }
   }
-  out.print("{}", fmt::string_view(rows.data(), rows.size()));
+  out.write(std::string_view(rows.data(), rows.size()));
+  out.close();
 }
 
 void Recorder::write_snapshots(const std::string& path) const {
-  std::ofstream out(path);
-  out << snapshots_.dump() << "\n";
+  write_file(path, snapshots_.dump() + "\n");
 }
 
 namespace {

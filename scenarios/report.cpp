@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 
+#include "scenarios/output_file.hpp"
+
 namespace masnet::scenarios {
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -559,9 +561,7 @@ fs::path write_report(const RunData& run, const std::vector<FigureInfo>& figures
   h << "<script>" << kReportScript << "</script>\n</body>\n</html>\n";
 
   const fs::path path = run.dir / "report.html";
-  std::ofstream out(path, std::ios::binary);
-  out << h.str();
-  if (!out) throw std::runtime_error("cannot write '" + path.string() + "'");
+  write_file(path, h.str());
   return path;
 }
 

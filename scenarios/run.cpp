@@ -2,10 +2,8 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 
-#include <unistd.h>
-
+#include "scenarios/output_file.hpp"
 #include "sim/fingerprint.hpp"
 
 namespace masnet::scenarios {
@@ -97,10 +95,7 @@ nlohmann::json Run::summary() const {
 
 void Run::write_files(const std::string& dir) const {
   const fs::path d(dir);
-  {
-    std::ofstream out(d / "summary.json");
-    out << summary().dump(2) << "\n";
-  }
+  write_file(d / "summary.json", summary().dump(2) + "\n");
   recorder_->write_nodes((d / "nodes.csv").string());
   recorder_->write_timeseries((d / "timeseries.csv").string());
   recorder_->write_trajectories((d / "trajectories.csv").string());
@@ -113,42 +108,6 @@ std::string run_key(const ScenarioDef& def) {
   const std::string text = std::string(MASNET_VERSION) + "\n" + def.resolved.dump();
   for (unsigned char c : text) h.mix(std::uint64_t{c});
   return h.hex();
-}
-
-std::string check_run_directory(const std::string& dir, const std::string& key, bool force) {
-  std::error_code ec;
-  if (!fs::exists(dir, ec)) return {};
-  if (!fs::is_directory(dir, ec)) return "'" + dir + "' exists and is not a directory";
-  if (force || fs::is_empty(dir, ec)) return {};
-  const fs::path summary = fs::path(dir) / "summary.json";
-  std::ifstream in(summary);
-  if (in) {
-    try {
-      const nlohmann::json j = nlohmann::json::parse(in);
-      if (j.value("run_key", std::string()) == key) return {};  // the same run again: replace it
-      return "refusing to overwrite '" + dir + "': it holds a different run (scenario '" +
-             j["scenario"].value("name", std::string("?")) + "', seed " + j["seed"].dump() +
-             "); choose another --out or add --force";
-    } catch (const nlohmann::json::exception&) {
-    }
-  }
-  return "refusing to overwrite '" + dir + "': it is not empty and holds no masnet run; choose another --out or add --force";
-}
-
-void publish_run_directory(const std::string& dir, const std::function<void(const std::string&)>& write) {
-  const fs::path target = fs::absolute(dir);
-  fs::create_directories(target.parent_path());
-  const fs::path staging = target.parent_path() / (target.filename().string() + ".partial-" + std::to_string(::getpid()));
-  fs::remove_all(staging);
-  fs::create_directories(staging);
-  try {
-    write(staging.string());
-  } catch (...) {
-    fs::remove_all(staging);
-    throw;
-  }
-  fs::remove_all(target);
-  fs::rename(staging, target);
 }
 
 }  // namespace masnet::scenarios

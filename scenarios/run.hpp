@@ -48,17 +48,4 @@ class Run {
 /// the same key. A run directory holding another key is "a different run".
 std::string run_key(const ScenarioDef& def);
 
-struct RunDirectoryOptions {
-  std::string out_dir;  ///< empty: runs/<name>-seed<seed>
-  bool force = false;   ///< replace a different run's directory
-};
-
-/// Checks that `dir` may receive this run (absent, empty, or the same run), or `force`.
-/// Returns an error message, empty when fine.
-std::string check_run_directory(const std::string& dir, const std::string& key, bool force);
-
-/// Writes the run into a temporary sibling directory and renames it into place, so that an
-/// interrupted run never leaves a half-written directory.
-void publish_run_directory(const std::string& dir, const std::function<void(const std::string&)>& write);
-
 }  // namespace masnet::scenarios

@@ -21,7 +21,9 @@
 #include <boost/asio/thread_pool.hpp>
 
 #include "scenarios/figures.hpp"
+#include "scenarios/output_file.hpp"
 #include "scenarios/run.hpp"
+#include "scenarios/run_directory.hpp"
 #include "scenarios/scenario.hpp"
 #include "scenarios/sweep_report.hpp"
 
@@ -792,6 +794,10 @@ RunResult execute_sweep_run(const SweepDef& sweep, const RunSpec& run, const std
     // The resolved scenario is (base, overrides, seed) again: not worth a copy per row.
     if (result.summary.contains("scenario")) result.summary["scenario"].erase("resolved");
     result.ok = true;
+  } catch (const OutputError& e) {
+    result.ok = false;
+    result.summary = nullptr;
+    result.error = e.what();
   } catch (const std::exception& e) {
     result.ok = false;
     result.summary = nullptr;
@@ -996,15 +1002,17 @@ SweepSession::SweepSession(const SweepDef& sweep, std::vector<RunSpec> runs, Swe
   std::error_code ec;
   if (fs::exists(out, ec) && !fs::is_directory(out, ec))
     throw SweepOutputError("'" + out.string() + "' exists and is not a directory");
+  // --force discards a sweep's own results only: a folder of other files is never emptied.
+  if (fs::exists(out, ec) && !fs::is_empty(out, ec) && !fs::exists(db_path, ec)) {
+    throw SweepOutputError("refusing to write into '" + out.string() +
+                           "': it is not empty and holds no sweep results (results.sqlite); "
+                           "choose another --out");
+  }
   if (options_.force) {
     for (const char* name : {"results.sqlite", "results.sqlite-journal", "results.sqlite-wal",
                              "results.sqlite-shm", "results.csv", "report.html"})
       fs::remove(out / name, ec);
     fs::remove_all(out / "runs", ec);
-  } else if (fs::exists(out, ec) && !fs::is_empty(out, ec) && !fs::exists(db_path, ec)) {
-    throw SweepOutputError("refusing to write into '" + out.string() +
-                           "': it is not empty and holds no sweep results (results.sqlite); "
-                           "choose another --out or add --force");
   }
   fs::create_directories(out);
   if (sqlite3_open_v2(db_path.c_str(), &db_->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE,
@@ -1209,6 +1217,7 @@ SweepCounts SweepSession::finish() {
     update.step();
   }
   const fs::path out(options_.out_dir);
+  std::error_code ec;
 
   // results.csv: the rows of this sweep's runs, columns fixed, parameters, metrics by name.
   {
@@ -1239,31 +1248,34 @@ SweepCounts SweepSession::finish() {
           std::find(order.begin(), order.end(), position(name)) == order.end())
         order.push_back(position(name));
     const fs::path tmp = out / "results.csv.partial";
-    {
-      std::ofstream csv(tmp);
+    try {
+      OutputFile csv(tmp);
       for (std::size_t i = 0; i < order.size(); ++i)
-        csv << (i ? "," : "") << names[order[i]];
-      csv << "\n";
+        csv.print("{}{}", i ? "," : "", names[order[i]]);
+      csv.write("\n");
       while (rows.step()) {
         for (std::size_t i = 0; i < order.size(); ++i) {
           const int c = order[i];
-          if (i) csv << ",";
+          if (i) csv.write(",");
           switch (sqlite3_column_type(rows.get(), c)) {
             case SQLITE_NULL:
               break;
             case SQLITE_INTEGER:
-              csv << sqlite3_column_int64(rows.get(), c);
+              csv.print("{}", sqlite3_column_int64(rows.get(), c));
               break;
             case SQLITE_FLOAT:
-              csv << shortest(rows.number(c));
+              csv.write(shortest(rows.number(c)));
               break;
             default:
-              csv << csv_cell(rows.text(c));
+              csv.write(csv_cell(rows.text(c)));
           }
         }
-        csv << "\n";
+        csv.write("\n");
       }
-      if (!csv) throw std::runtime_error("cannot write " + tmp.string());
+      csv.close();
+    } catch (...) {
+      fs::remove(tmp, ec);
+      throw;
     }
     fs::rename(tmp, out / "results.csv");
   }
@@ -1311,10 +1323,11 @@ SweepCounts SweepSession::finish() {
   }
   report.total_runs = runs_.size();
   const fs::path tmp = out / "report.html.partial";
-  {
-    std::ofstream html(tmp, std::ios::binary);
-    html << render_sweep_report(report);
-    if (!html) throw std::runtime_error("cannot write " + tmp.string());
+  try {
+    write_file(tmp, render_sweep_report(report));
+  } catch (...) {
+    fs::remove(tmp, ec);
+    throw;
   }
   fs::rename(tmp, out / "report.html");
   return counts_;

@@ -7,10 +7,14 @@
 #include <memory>
 #include <thread>
 
+#include <ifaddrs.h>
+#include <net/if.h>
 #include <unistd.h>
 #include <CLI/CLI.hpp>
 
+#include "scenarios/run_directory.hpp"
 #include "scenarios/sweep.hpp"
+#include "sim/cpus.hpp"
 
 #ifdef MASNET_HAVE_MPI
 #include <mpi.h>
@@ -64,6 +68,20 @@ class MpiScope {
   }
   int size() const {
     return size_;
+  }
+  /// Whether every rank runs on this host (collective: every rank must call it).
+  bool all_on_one_host() const {
+#ifdef MASNET_HAVE_MPI
+    if (size_ <= 1) return true;
+    MPI_Comm node;
+    MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+    int node_size = 0;
+    MPI_Comm_size(node, &node_size);
+    MPI_Comm_free(&node);
+    return node_size == size_;
+#else
+    return true;
+#endif
   }
   [[noreturn]] void abort(int code) {
 #ifdef MASNET_HAVE_MPI
@@ -235,8 +253,44 @@ int mpi_worker(const SweepDef& sweep, const SweepOptions& options) {
 }
 #endif
 
+// Whether this process can reach any network beyond loopback (false in a private network
+// namespace), and whether mpirun was told to keep both its channels on loopback.
+bool sees_only_loopback() {
+  ifaddrs* list = nullptr;
+  if (getifaddrs(&list) != 0) return false;
+  bool only = true;
+  for (ifaddrs* a = list; a; a = a->ifa_next)
+    if (a->ifa_addr && (a->ifa_addr->sa_family == AF_INET || a->ifa_addr->sa_family == AF_INET6) &&
+        !(a->ifa_flags & IFF_LOOPBACK) && (a->ifa_flags & IFF_UP))
+      only = false;
+  freeifaddrs(list);
+  return only;
+}
+
+bool mpi_told_loopback() {
+  auto value = [](const char* name) {
+    const char* v = std::getenv(name);
+    return std::string(v ? v : "");
+  };
+  const std::string btl = value("OMPI_MCA_btl");
+  // "self,vader" leaves TCP out, "^tcp" excludes it; "^openib" still has it.
+  const bool has_tcp = btl.find("tcp") != std::string::npos, excludes = btl.rfind("^", 0) == 0;
+  const bool btl_ok = !value("OMPI_MCA_btl_tcp_if_include").empty() ||
+                      (!btl.empty() && (excludes ? has_tcp : !has_tcp));
+  return !value("OMPI_MCA_oob_tcp_if_include").empty() && btl_ok;
+}
+
 int sweep_main(const SweepArgs& args, MpiScope& mpi) {
   const bool root = mpi.rank() == 0;
+  // A sweep on one machine needs no network; OpenMPI listens on every interface unless told
+  // otherwise (docs/sweeps.md, "MPI on one machine").
+  if (mpi.size() > 1 && mpi.all_on_one_host() && root && !args.quiet && !sees_only_loopback() &&
+      !mpi_told_loopback())
+    std::fprintf(stderr,
+                 "masnet sweep: note: all %d ranks run on this host, yet OpenMPI listens on every "
+                 "network interface by default. On one machine `masnet sweep --jobs N` needs no "
+                 "MPI; to keep mpirun on loopback see docs/sweeps.md (\"MPI on one machine\").\n",
+                 mpi.size());
   // Every rank reads the sweep file itself (same file, same expansion); only rank 0 speaks.
   SweepLoad loaded = load_sweep(args.file);
   if (!loaded.sweep) {
@@ -255,8 +309,29 @@ int sweep_main(const SweepArgs& args, MpiScope& mpi) {
   SweepOptions options;
   options.out_dir = args.out.empty() ? sweep.output_dir : args.out;
   options.ranks = mpi.size();
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  options.jobs = args.jobs > 0 ? args.jobs : (mpi.size() > 1 ? 1 : cores);
+  // Refused before any run: a folder that can never hold results, or one that cannot be
+  // written (a read-only mount), must not be found out after hours of simulation.
+  std::string problem = forbidden_output_directory(options.out_dir, "--out");
+  if (problem.empty()) problem = probe_writable(options.out_dir);
+  if (!problem.empty()) {
+    if (root) std::fprintf(stderr, "masnet sweep: %s\n", problem.c_str());
+    return kBadInput;
+  }
+  const int cpus = masnet::sim::allowed_cpu_count();
+  options.jobs = args.jobs > 0 ? args.jobs : (mpi.size() > 1 ? 1 : cpus);
+  // More threads than runs would only sit idle; more than the CPUs this process may use is
+  // allowed (runs then share them) but said.
+  const std::size_t run_count = expand_sweep(sweep).size();
+  if (static_cast<std::size_t>(options.jobs) > run_count)
+    options.jobs = static_cast<int>(std::max<std::size_t>(1, run_count));
+  if (root && args.jobs > cpus) {
+    std::string capped;
+    if (options.jobs < args.jobs) capped = " (capped at the sweep's " + std::to_string(options.jobs) + " runs)";
+    std::fprintf(stderr,
+                 "masnet sweep: warning: --jobs %d is more than the %d CPU%s this process may use; the runs "
+                 "will share them%s\n",
+                 args.jobs, cpus, cpus == 1 ? "" : "s", capped.c_str());
+  }
   options.force = args.force;
   options.progress = root && !args.quiet && ::isatty(STDERR_FILENO) == 1;
 #ifdef MASNET_HAVE_MPI
