@@ -259,3 +259,30 @@ TEST_CASE("masnet sweep caps --jobs at its runs and warns above the allowed CPUs
   CHECK(o.output.find("(capped at the sweep's 2 runs)") != std::string::npos);
   CHECK(o.output.find("with 2 jobs × 1 rank") != std::string::npos);
 }
+
+TEST_CASE("A sweep under mpirun on one host notes once how to keep MPI on loopback", "[scenarios]") {
+  if (std::system("command -v mpirun > /dev/null 2>&1") != 0 ||
+      std::system(fmt::format("'{}' sweep --help | grep -q -- --no-mpi", kMasnet).c_str()) != 0) {
+    WARN("skipped: mpirun is absent (apt-get install openmpi-bin)");
+    return;
+  }
+  Scratch s("mpi-note");
+  std::ofstream(s.dir / "sweep.yaml") << "base: " << kAcoustic
+                                      << "\nseeds: [1, 2]\nset: {duration: 0.2, output.snapshots: []}\n";
+  const std::string mpirun = "ASAN_OPTIONS=detect_leaks=0 mpirun -x ASAN_OPTIONS --oversubscribe --allow-run-as-root";
+  const std::string note = "masnet sweep: note: all 2 ranks run on this host";
+  const Outcome open = s.shell(fmt::format("{} -np 2 '{}' sweep sweep.yaml --out a", mpirun, kMasnet));
+  INFO(open.output);
+  CHECK(open.exit_code == 0);
+  if (open.output.find("see docs/sweeps.md") == std::string::npos) {
+    // This host has no interface but loopback (a private network namespace): nothing to note.
+    CHECK(open.output.find(note) == std::string::npos);
+    return;
+  }
+  CHECK(masnet::test::count(open.output, note) == 1);
+  const Outcome loopback = s.shell(fmt::format(
+      "{} --mca btl self,vader --mca oob_tcp_if_include lo -np 2 '{}' sweep sweep.yaml --out b", mpirun, kMasnet));
+  INFO(loopback.output);
+  CHECK(loopback.exit_code == 0);
+  CHECK(loopback.output.find(note) == std::string::npos);
+}
