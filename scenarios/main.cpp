@@ -99,6 +99,10 @@ int command_run(const RunArgs& args) {
                  out.c_str(), e.what());
     return kInternalError;
   }
+  // A degenerate run says so even with --quiet: its numbers would mislead otherwise.
+  const nlohmann::json summary = run.summary();
+  for (const auto& warning : summary.at("warnings"))
+    std::fprintf(stderr, "masnet: warning: %s\n", warning.get<std::string>().c_str());
   if (!args.quiet) {
     std::printf("%s: %.3f s simulated in %.3f s wall, %llu events, fingerprint %s\n",
                 def.name.c_str(), def.duration_s, run.wall_time_s(),

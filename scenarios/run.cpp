@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "scenarios/output_file.hpp"
+#include "scenarios/run_warnings.hpp"
 #include "sim/fingerprint.hpp"
 
 namespace masnet::scenarios {
@@ -90,6 +91,7 @@ nlohmann::json Run::summary() const {
                    {"sensor_layout", def_.sensor_layout},
                    {"resolved", def_.resolved}};
   j.update(recorder_->summary_metrics());
+  j["warnings"] = run_warnings(j, def_.world.radio.loss);
   return j;
 }
 
