@@ -73,7 +73,7 @@ TEST_CASE("with the vertex criterion and no loss every update finds exactly the 
   CHECK(updates > 24 * 5 * 15);
 }
 
-TEST_CASE("the seed's sensor criterion is measured, not assumed, against the oracle", "[agents]") {
+TEST_CASE("the paper's sensor criterion misses a few neighbours, measured against the oracle", "[agents]") {
   std::uint64_t updates = 0, correct = 0;
   for (std::uint64_t seed = 1; seed <= 24; ++seed) {
     const Judge j = run(layout(seed, protocols::StopCriterion::sensors), 0.2);
@@ -83,8 +83,12 @@ TEST_CASE("the seed's sensor criterion is measured, not assumed, against the ora
   const double rate = static_cast<double>(correct) / static_cast<double>(updates);
   WARN("sensor criterion: " << correct << " of " << updates << " updates had the true neighbour set ("
                             << rate * 100 << " %)");
-  CHECK(updates > 0);
-  CHECK(rate <= 1.0);
+  CHECK(updates > 24 * 5 * 15);
+  // Measured at 93.9 %: the criterion stops once no farther sensor answers, so a neighbour whose
+  // bisector crosses the cell between sensors goes unseen. It must miss some (else it would be
+  // the vertex criterion) and not many (else the protocol or the judge broke).
+  CHECK(correct < updates);
+  CHECK(rate > 0.9);
 }
 
 TEST_CASE("loss lowers cell correctness but every update still terminates", "[agents]") {

@@ -5,11 +5,29 @@
 #include <filesystem>
 #include <string>
 
+#include <catch2/catch.hpp>
 #include <fmt/format.h>
 
 #include "text_files.hpp"
 
 namespace masnet::test {
+
+/// Under CI (the variable CI set, as CI's runner does), where setup installs Chromium and
+/// Chart.js, a missing one is a failure; elsewhere the test is skipped with a visible warning.
+inline bool in_ci() {
+  const char* ci = std::getenv("CI");
+  return ci && *ci && std::string(ci) != "false" && std::string(ci) != "0";
+}
+
+// Skips the current test (visibly) unless `present`; fails it instead under CI.
+#define MASNET_REQUIRE_TOOL(present, what)                                                    \
+  do {                                                                                        \
+    if (!(present)) {                                                                         \
+      if (::masnet::test::in_ci()) FAIL(std::string(what) + " is missing, and CI must have it"); \
+      WARN(std::string("skipped: ") + (what) + " is missing");                               \
+      return;                                                                                 \
+    }                                                                                         \
+  } while (false)
 
 inline const std::filesystem::path kChromium = "/usr/bin/chromium";
 

@@ -167,14 +167,8 @@ TEST_CASE(
 
 TEST_CASE("The report opens in headless Chromium without errors and draws its charts",
           "[scenarios][chromium]") {
-  if (!fs::exists(masnet::test::kChromium)) {
-    WARN("skipped: /usr/bin/chromium is absent (apt-get install chromium)");
-    return;
-  }
-  if (!find_chartjs({})) {
-    WARN("skipped: libjs-chart.js is absent (apt-get install libjs-chart.js)");
-    return;
-  }
+  MASNET_REQUIRE_TOOL(fs::exists(masnet::test::kChromium), "/usr/bin/chromium (apt-get install chromium)");
+  MASNET_REQUIRE_TOOL(find_chartjs({}), "Chart.js (apt-get install libjs-chart.js)");
   const ShortRun& run = short_run();
   REQUIRE(run.status == 0);
   const fs::path shot = run.base / "screenshot.png";

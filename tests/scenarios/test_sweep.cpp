@@ -612,10 +612,7 @@ TEST_CASE("masnet sweep: same runs table with --jobs 1, --jobs 2 and mpirun -np 
 
 TEST_CASE("The sweep report draws its charts in headless Chromium without script errors",
           "[scenarios][chromium]") {
-  if (!fs::exists(masnet::test::kChromium)) {
-    WARN("skipped: /usr/bin/chromium is absent (apt-get install chromium)");
-    return;
-  }
+  MASNET_REQUIRE_TOOL(fs::exists(masnet::test::kChromium), "/usr/bin/chromium (apt-get install chromium)");
   // Two factors, one numeric and one categorical: 2 axes × 2 metrics = 4 charts.
   SweepReportInput in;
   in.title = "chromium";
@@ -634,10 +631,8 @@ TEST_CASE("The sweep report draws its charts in headless Chromium without script
     in.runs.push_back(r);
   }
   const std::string html = render_sweep_report(in);
-  if (html.find("id=\"no-charts\"") != std::string::npos) {
-    WARN("skipped: libjs-chart.js is absent (apt-get install libjs-chart.js)");
-    return;
-  }
+  MASNET_REQUIRE_TOOL(html.find("id=\"no-charts\"") == std::string::npos,
+                      "Chart.js (apt-get install libjs-chart.js)");
   const fs::path base = fresh_dir("chromium");
   fs::create_directories(base);
   write_file(base / "report.html", html);
