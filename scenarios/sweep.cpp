@@ -26,6 +26,7 @@
 #include "scenarios/run_directory.hpp"
 #include "scenarios/scenario.hpp"
 #include "scenarios/sweep_report.hpp"
+#include "scenarios/sweep_statistics.hpp"
 
 namespace masnet::scenarios {
 namespace fs = std::filesystem;
@@ -1218,6 +1219,7 @@ SweepCounts SweepSession::finish() {
   }
   const fs::path out(options_.out_dir);
   std::error_code ec;
+  write_statistics_table(db_->db, runs_);
 
   // results.csv: the rows of this sweep's runs, columns fixed, parameters, metrics by name.
   {
@@ -1318,6 +1320,7 @@ SweepCounts SweepSession::finish() {
       while (m.step())
         rr.metrics[m.text(0)] = m.number(1);
       m.reset();
+      add_derived_metrics(rr.metrics);
       report.runs.push_back(std::move(rr));
     }
   }

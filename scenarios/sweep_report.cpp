@@ -13,40 +13,13 @@ namespace masnet::scenarios {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-double student_t_975(std::size_t df) {
-  // Two-sided 95 % (upper 97.5 %) quantiles of Student's t, df = 1..30.
-  static constexpr double table[30] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306,
-                                       2.262,  2.228, 2.201, 2.179, 2.160, 2.145, 2.131, 2.120,
-                                       2.110,  2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064,
-                                       2.060,  2.056, 2.052, 2.048, 2.045, 2.042};
-  if (df == 0) return std::numeric_limits<double>::quiet_NaN();
-  return df <= 30 ? table[df - 1] : 1.96;
-}
-
-MeanCi mean_ci95(const std::vector<double>& values) {
-  MeanCi r;
-  r.n = values.size();
-  if (r.n == 0) return r;
-  double sum = 0;
-  for (double v : values)
-    sum += v;
-  const auto n = static_cast<double>(r.n);
-  r.mean = sum / n;
-  if (r.n < 2) return r;
-  double squares = 0;
-  for (double v : values)
-    squares += (v - r.mean) * (v - r.mean);
-  const double sd = std::sqrt(squares / (n - 1));
-  r.half_width = student_t_975(r.n - 1) * sd / std::sqrt(n);
-  return r;
-}
-
 const std::vector<SweepReportMetric>& sweep_report_metrics() {
   static const std::vector<SweepReportMetric> metrics = {
       {"messages.total.count", "messages sent"},
       {"messages.total.bytes", "bytes sent"},
       {"energy_j.total", "energy, total (J)"},
       {"energy_j.per_node_max", "energy, max per node (J)"},
+      {"energy_per_update_j", "energy per update (J)"},
       {"protocol.rounds_mean", "rounds per update"},
       {"protocol.rounds_max", "rounds, max"},
       {"protocol.cell_correctness", "cell correctness (0..1)"},

@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "scenarios/sweep_statistics.hpp"
+
 namespace masnet::scenarios {
 
 /// One factor of the sweep as the report shows it.
@@ -48,17 +50,6 @@ struct SweepReportInput {
   std::filesystem::path chartjs;
 };
 
-/// The 97.5 % quantile of Student's t with `df` degrees of freedom (tabulated for 1..30,
-/// 1.96 beyond); NaN for df = 0.
-double student_t_975(std::size_t df);
-
-struct MeanCi {
-  std::size_t n = 0;
-  double mean = std::numeric_limits<double>::quiet_NaN();
-  /// Half-width of the 95 % confidence interval of the mean, t(n-1)·s/√n; NaN when n < 2.
-  double half_width = std::numeric_limits<double>::quiet_NaN();
-};
-MeanCi mean_ci95(const std::vector<double>& values);
 
 /// A metric the report compares: its dotted summary key and a title with units.
 struct SweepReportMetric {

@@ -324,22 +324,6 @@ TEST_CASE("A bad sweep file gets file:line:col errors", "[scenarios]") {
   CHECK(errors("base: [oops\n").at(0).rfind(f + ":", 0) == 0);
 }
 
-TEST_CASE("Student t quantiles and the 95 % confidence interval of a mean", "[scenarios]") {
-  CHECK(student_t_975(1) == Approx(12.706));
-  CHECK(student_t_975(9) == Approx(2.262));
-  CHECK(student_t_975(30) == Approx(2.042));
-  CHECK(student_t_975(31) == Approx(1.96));
-  CHECK(std::isnan(student_t_975(0)));
-  const MeanCi ci = mean_ci95({1, 2, 3, 4, 5});
-  CHECK(ci.n == 5);
-  CHECK(ci.mean == Approx(3.0));
-  // s = sqrt(2.5), t(4) = 2.776: 2.776 · 1.5811 / sqrt(5) = 1.9630.
-  CHECK(ci.half_width == Approx(2.776 * std::sqrt(2.5) / std::sqrt(5.0)));
-  CHECK(std::isnan(mean_ci95({4.0}).half_width));
-  CHECK(mean_ci95({4.0}).mean == 4.0);
-  CHECK(mean_ci95({}).n == 0);
-}
-
 TEST_CASE("Summary metrics flatten to dotted keys and SQL column names", "[scenarios]") {
   const json summary = {
       {"seed", 3},
