@@ -59,16 +59,19 @@ Vec2 box_high(const ConvexPolygon& domain) {
   return hi;
 }
 
-// Random layouts sample the bounding box and keep the points inside Ω: a sliver of a domain
-// would take without end.
-bool random_layout_fits(Section& s, const ConvexPolygon& domain) {
+// Random layouts draw points in the bounding box and keep those inside Ω: in a sliver of a
+// domain that takes count / fill draws, bounded like the other periodic work.
+bool random_layout_fits(Section& s, const ConvexPolygon& domain, std::int64_t count, const NodeCaps& caps) {
   const Vec2 lo = box_low(domain), hi = box_high(domain);
   const double fill = protocols::area(domain) / ((hi.x() - lo.x()) * (hi.y() - lo.y()));
-  if (fill >= 0.01) return true;
-  std::ostringstream percent;
-  percent << fill * 100.0;
-  s.error_at("layout", "layout random needs a domain that fills at least 1% of its bounding box (this one fills " +
-                           percent.str() + "%)");
+  const double draws = static_cast<double>(count) / fill;
+  const double limit = caps.huge ? kMaxPeriodicWork : kMaxRandomDraws;
+  if (draws <= limit) return true;
+  std::ostringstream text;
+  text << "layout random would draw about " << draws << " points (the domain fills " << fill * 100.0
+       << "% of its bounding box), more than the limit of " << limit << "; use fewer nodes"
+       << (caps.huge ? "" : ", or set limits.allow_huge: true");
+  s.error_at("count", text.str());
   return false;
 }
 
@@ -203,7 +206,7 @@ std::vector<agents::SensorDef> read_sensors(Section s, const ConvexPolygon& doma
                               std::to_string(wanted) + ")" + opt_in_hint(caps, kMaxSensorsHuge));
       wanted = 0;
     }
-    if (!random_layout_fits(s, domain)) wanted = 0;
+    if (!random_layout_fits(s, domain, wanted, caps)) wanted = 0;
     count = static_cast<std::size_t>(wanted);
     if (caps.build_sensors) {
       sensors.reserve(count);
@@ -301,7 +304,7 @@ std::vector<Vec2> read_robots(Section s, const ConvexPolygon& domain, std::uint6
                               std::to_string(count) + ")" + opt_in_hint(caps, kMaxRobotsHuge));
       count = 0;
     }
-    if (!random_layout_fits(s, domain)) count = 0;
+    if (!random_layout_fits(s, domain, count, caps)) count = 0;
     auto rng = sim::RandomStream::keyed(seed, std::uint64_t{0}, sim::purpose("robots.layout"));
     while (static_cast<std::int64_t>(robots.size()) < count) {
       const Vec2 p{rng.uniform(lo.x(), hi.x()), rng.uniform(lo.y(), hi.y())};

@@ -20,6 +20,8 @@ inline constexpr std::int64_t kMaxRobotsHuge = 10'000'000;
 /// diffusion cell updates), and timeseries rows.
 inline constexpr double kMaxPeriodicWork = 1e9;
 inline constexpr double kMaxSamples = 1e7;
+/// Points a random layout may draw (it keeps those inside the domain).
+inline constexpr double kMaxRandomDraws = 2e7;
 /// The largest density a field may reach after density_scaling.
 inline constexpr double kMaxDensityLog10 = 100.0;
 /// How many nodes outside the domain are listed before "... and N more".

@@ -114,7 +114,7 @@ TEST_CASE("a key given without a value is an error for every kind of key", "[sce
                                  "oracle, fixed_radius, gabriel, got nothing (null)"});
 }
 
-TEST_CASE("--set values must be UTF-8 and free of YAML tags", "[scenarios]") {
+TEST_CASE("values given with --set must be UTF-8 and free of YAML tags", "[scenarios]") {
   CHECK(problems("duration: 1\n", {"name=caf\xb1"}) ==
         std::vector<std::string>{
             "--set name=caf\\xB1: the text is not valid UTF-8 (byte 0xB1 here); save the file as UTF-8"});
@@ -195,7 +195,7 @@ TEST_CASE("sensors outside the domain are listed up to ten, then counted", "[sce
   CHECK(lines[10] == csv + ":12:1: ... and 5 more sensors outside the domain");
 }
 
-TEST_CASE("--seed takes 0 to 2^63-1 like the seed key, and nothing is clamped", "[scenarios]") {
+TEST_CASE("the --seed option takes 0 to 2^63-1 like the seed key, and nothing is clamped", "[scenarios]") {
   TempDir dir;
   REQUIRE(!dir.path.empty());
   const std::string scenario = kScenarios + "/examples/beacons.yaml";

@@ -202,8 +202,9 @@ const std::vector<Case> kCases = {
       "many_robots_outside_domain.yaml:5:14: robots.positions: robot 10 at (10.5, 0.5) lies outside the domain",
       "many_robots_outside_domain.yaml:5:14: ... and 3 more robots outside the domain"}},
     {"random_layout_sliver.yaml",
-     {"random_layout_sliver.yaml:6:11: sensors.layout: layout random needs a domain that fills at least 1% of its bounding box (this one fills 0.05%)",
-      "random_layout_sliver.yaml:8:11: robots.layout: layout random needs a domain that fills at least 1% of its bounding box (this one fills 0.05%)"}},
+     {"random_layout_sliver.yaml:7:10: sensors.count: layout random would draw about 2e+08 points (the domain "
+      "fills 0.05% of its bounding box), more than the limit of 2e+07; use fewer nodes, or set "
+      "limits.allow_huge: true"}},
     {"bad_limits.yaml",
      {"bad_limits.yaml:3:15: limits.allow_huge: expected true or false, got 'yes please'"}},
     // Every problem is reported, in the order of the file.
