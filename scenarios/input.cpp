@@ -92,8 +92,9 @@ class YamlScan : public YAML::EventHandler {
 
   void OnDocumentStart(const YAML::Mark& mark) override {
     if (++documents_ > 1) {
-      report(mark, "a second YAML document starts here (a scenario holds a single document; "
-                   "remove the '---' and what follows)");
+      report(mark,
+             "a second YAML document starts here (a scenario holds a single document; "
+             "remove the '---' and what follows)");
       throw StopScan{};
     }
   }
@@ -140,7 +141,8 @@ class YamlScan : public YAML::EventHandler {
   void report(const YAML::Mark& mark, std::string message) {
     std::string location = fixed_;
     if (!file_.empty())
-      location = file_ + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
+      location =
+          file_ + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
     diagnostics.push_back({std::move(location), std::move(message)});
   }
   void check_tag(const YAML::Mark& mark, const std::string& tag) {
@@ -154,7 +156,8 @@ class YamlScan : public YAML::EventHandler {
     if (++tags_ >= 10) throw StopScan{};
   }
   void add(std::uint64_t nodes) {
-    if (!open_.empty()) open_.back().nodes = std::min(open_.back().nodes + nodes, kMaxAliasNodes + 1);
+    if (!open_.empty())
+      open_.back().nodes = std::min(open_.back().nodes + nodes, kMaxAliasNodes + 1);
   }
   void leaf(YAML::anchor_t anchor) {
     if (anchor != YAML::NullAnchor) sizes_[anchor] = 1;
@@ -179,7 +182,8 @@ class YamlScan : public YAML::EventHandler {
 std::vector<Diagnostic> check_yaml_text(const std::string& text, const std::string& file,
                                         const std::string& fixed_location) {
   if (const std::size_t bad = first_invalid_utf8(text); bad != std::string::npos) {
-    const std::string location = file.empty() ? fixed_location : file + ":" + line_column(text, bad);
+    const std::string location =
+        file.empty() ? fixed_location : file + ":" + line_column(text, bad);
     static const char* hex = "0123456789ABCDEF";
     const auto byte = static_cast<unsigned char>(text[bad]);
     return {{location, std::string("the text is not valid UTF-8 (byte 0x") + hex[byte >> 4] +
@@ -216,8 +220,8 @@ std::string sanitized_name(std::string_view text) {
   std::string out;
   for (char c : text) {
     if (out.size() == kMaxNameChars) break;
-    const bool allowed = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
-                         c == '.' || c == '_' || c == '-';
+    const bool allowed = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') ||
+                         (c >= '0' && c <= '9') || c == '.' || c == '_' || c == '-';
     if (out.empty() && (c == '.' || c == '-')) continue;
     out += allowed ? c : '_';
   }

@@ -17,7 +17,7 @@ inline constexpr std::uint64_t kMaxScenarioFileBytes = std::uint64_t{16} << 20;
 inline constexpr std::uint64_t kMaxSensorFileBytes = std::uint64_t{1} << 30;
 /// YAML aliases (*name) may repeat at most this many nodes in all: yaml-cpp shares an aliased
 /// node, but every reader walks each repetition, so a few lines can stand for billions.
-inline constexpr std::uint64_t kMaxAliasNodes = 1'000'000;
+inline constexpr std::uint64_t kMaxAliasNodes = 100'000;
 /// The longest name (scenario names become run directories).
 inline constexpr std::size_t kMaxNameChars = 64;
 

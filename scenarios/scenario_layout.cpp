@@ -33,8 +33,10 @@ class OutsideList {
  public:
   explicit OutsideList(ScenarioReader& reader) : reader_(reader) {}
   void add(const std::string& location, const std::string& message) {
-    if (++count_ <= kMaxListed) reader_.error(location, message);
-    else if (first_unlisted_.empty()) first_unlisted_ = location;
+    if (++count_ <= kMaxListed)
+      reader_.error(location, message);
+    else if (first_unlisted_.empty())
+      first_unlisted_ = location;
   }
   void finish(const std::string& what) {
     if (count_ > kMaxListed)
@@ -50,18 +52,21 @@ class OutsideList {
 
 Vec2 box_low(const ConvexPolygon& domain) {
   Vec2 lo = domain.vertices[0];
-  for (const Vec2& v : domain.vertices) lo = lo.cwiseMin(v);
+  for (const Vec2& v : domain.vertices)
+    lo = lo.cwiseMin(v);
   return lo;
 }
 Vec2 box_high(const ConvexPolygon& domain) {
   Vec2 hi = domain.vertices[0];
-  for (const Vec2& v : domain.vertices) hi = hi.cwiseMax(v);
+  for (const Vec2& v : domain.vertices)
+    hi = hi.cwiseMax(v);
   return hi;
 }
 
 // Random layouts draw points in the bounding box and keep those inside Ω: in a sliver of a
 // domain that takes count / fill draws, bounded like the other periodic work.
-bool random_layout_fits(Section& s, const ConvexPolygon& domain, std::int64_t count, const NodeCaps& caps) {
+bool random_layout_fits(Section& s, const ConvexPolygon& domain, std::int64_t count,
+                        const NodeCaps& caps) {
   const Vec2 lo = box_low(domain), hi = box_high(domain);
   const double fill = protocols::area(domain) / ((hi.x() - lo.x()) * (hi.y() - lo.y()));
   const double draws = static_cast<double>(count) / fill;
@@ -102,8 +107,10 @@ std::vector<agents::SensorDef> read_sensor_file(const std::string& path, Section
     while (std::getline(fields, field, ',')) {
       char* parsed_end = nullptr;
       const double v = std::strtod(field.c_str(), &parsed_end);
-      while (parsed_end && *parsed_end == ' ') ++parsed_end;
-      if (numeric && (parsed_end == field.c_str() || (parsed_end && *parsed_end != '\0' && *parsed_end != '\r'))) {
+      while (parsed_end && *parsed_end == ' ')
+        ++parsed_end;
+      if (numeric && (parsed_end == field.c_str() ||
+                      (parsed_end && *parsed_end != '\0' && *parsed_end != '\r'))) {
         numeric = false;
         bad_column = column;
         bad_field = field;
@@ -115,12 +122,14 @@ std::vector<agents::SensorDef> read_sensor_file(const std::string& path, Section
     const std::string at = path + ":" + std::to_string(number) + ":";
     if (!numeric) {
       if (number == 1) continue;  // a header line
-      reader.error(at + std::to_string(bad_column + 1),
-                   "expected a number, got '" + shown_text(bad_field) + "' (lines are 'x,y' or 'x,y,area')");
+      reader.error(
+          at + std::to_string(bad_column + 1),
+          "expected a number, got '" + shown_text(bad_field) + "' (lines are 'x,y' or 'x,y,area')");
       continue;
     }
     if (cols.size() != 2 && cols.size() != 3) {
-      reader.error(at + "1", "expected 2 or 3 columns (x,y[,area]), got " + std::to_string(cols.size()));
+      reader.error(at + "1",
+                   "expected 2 or 3 columns (x,y[,area]), got " + std::to_string(cols.size()));
       continue;
     }
     if (!(std::fabs(cols[0]) <= kMaxMagnitude && std::fabs(cols[1]) <= kMaxMagnitude)) {
@@ -147,11 +156,13 @@ std::vector<agents::SensorDef> read_sensor_file(const std::string& path, Section
 
 }  // namespace
 
-std::vector<agents::SensorDef> read_sensors(Section s, const ConvexPolygon& domain, std::uint64_t seed,
-                                            const std::string& base_dir, ScenarioReader& reader,
-                                            SensorLayout& layout, double& noise_sigma, const NodeCaps& caps) {
+std::vector<agents::SensorDef> read_sensors(Section s, const ConvexPolygon& domain,
+                                            std::uint64_t seed, const std::string& base_dir,
+                                            ScenarioReader& reader, SensorLayout& layout,
+                                            double& noise_sigma, const NodeCaps& caps) {
   std::vector<agents::SensorDef> sensors;
-  layout.kind = s.choice<std::string>("layout", "grid", {{"grid", "grid"}, {"random", "random"}, {"file", "file"}});
+  layout.kind = s.choice<std::string>("layout", "grid",
+                                      {{"grid", "grid"}, {"random", "random"}, {"file", "file"}});
   noise_sigma = s.number("noise", 0.0, Range::non_negative());
   const Vec2 lo = box_low(domain), hi = box_high(domain);
   const double domain_area = protocols::area(domain);
@@ -160,13 +171,15 @@ std::vector<agents::SensorDef> read_sensors(Section s, const ConvexPolygon& doma
     auto nx = s.integer("nx", 10, 1, 100000), ny = s.integer("ny", 10, 1, 100000);
     // Checked before anything is built: a typo must not exhaust memory while validating.
     if (nx * ny > caps.sensors) {
-      s.error_at("ny", "a " + std::to_string(nx) + " x " + std::to_string(ny) + " grid has more than " +
-                           std::to_string(caps.sensors) + " sensors" + opt_in_hint(caps, kMaxSensorsHuge));
+      s.error_at("ny", "a " + std::to_string(nx) + " x " + std::to_string(ny) +
+                           " grid has more than " + std::to_string(caps.sensors) + " sensors" +
+                           opt_in_hint(caps, kMaxSensorsHuge));
       nx = ny = 1;
     }
-    const std::string alignment = s.choice<std::string>(
-        "alignment", "cell_centred",
-        {{"cell_centred", "cell_centred"}, {"node_aligned", "node_aligned"}, {"interior", "interior"}});
+    const std::string alignment = s.choice<std::string>("alignment", "cell_centred",
+                                                        {{"cell_centred", "cell_centred"},
+                                                         {"node_aligned", "node_aligned"},
+                                                         {"interior", "interior"}});
     const double w = hi.x() - lo.x(), h = hi.y() - lo.y();
     // cell_centred: the centres of an nx × ny grid of cells (the paper's 40 × 40 sensors);
     // node_aligned: nx × ny nodes from wall to wall; interior: the inner nodes of an
@@ -182,8 +195,10 @@ std::vector<agents::SensorDef> read_sensors(Section s, const ConvexPolygon& doma
           x = lo.x() + static_cast<double>(i + 1) * w / static_cast<double>(nx + 1);
           y = lo.y() + static_cast<double>(j + 1) * h / static_cast<double>(ny + 1);
         } else {
-          x = nx == 1 ? lo.x() + 0.5 * w : lo.x() + static_cast<double>(i) * w / static_cast<double>(nx - 1);
-          y = ny == 1 ? lo.y() + 0.5 * h : lo.y() + static_cast<double>(j) * h / static_cast<double>(ny - 1);
+          x = nx == 1 ? lo.x() + 0.5 * w
+                      : lo.x() + static_cast<double>(i) * w / static_cast<double>(nx - 1);
+          y = ny == 1 ? lo.y() + 0.5 * h
+                      : lo.y() + static_cast<double>(j) * h / static_cast<double>(ny - 1);
         }
         const Vec2 p{x, y};
         if (!protocols::contains(domain, p)) continue;
@@ -191,7 +206,9 @@ std::vector<agents::SensorDef> read_sensors(Section s, const ConvexPolygon& doma
         if (caps.build_sensors) sensors.push_back({p, 0.0});
       }
     const auto intervals = [&](std::int64_t n) {
-      return static_cast<double>(alignment == "cell_centred" ? n : alignment == "interior" ? n + 1 : std::max<std::int64_t>(n - 1, 1));
+      return static_cast<double>(alignment == "cell_centred" ? n
+                                 : alignment == "interior"   ? n + 1
+                                                             : std::max<std::int64_t>(n - 1, 1));
     };
     layout.spacing = std::min(w / intervals(nx), h / intervals(ny));
   } else {
@@ -225,7 +242,8 @@ std::vector<agents::SensorDef> read_sensors(Section s, const ConvexPolygon& doma
     if (file.empty()) {
       s.error_at("file", "layout file needs 'file: path/to/sensors.csv'");
     } else {
-      if (std::filesystem::path(file).is_relative()) file = (std::filesystem::path(base_dir) / file).string();
+      if (std::filesystem::path(file).is_relative())
+        file = (std::filesystem::path(base_dir) / file).string();
       std::vector<int> lines;
       sensors = read_sensor_file(file, s, reader, lines, caps);
       OutsideList outside(reader);
@@ -242,7 +260,8 @@ std::vector<agents::SensorDef> read_sensors(Section s, const ConvexPolygon& doma
   }
   s.finish();
   layout.count = count;
-  if (layout.kind != "grid" && count > 0) layout.spacing = std::sqrt(domain_area / static_cast<double>(count));
+  if (layout.kind != "grid" && count > 0)
+    layout.spacing = std::sqrt(domain_area / static_cast<double>(count));
   // Every sensor stands for an equal share of Ω unless the file says otherwise.
   for (auto& d : sensors)
     if (d.area <= 0.0) d.area = domain_area / static_cast<double>(sensors.size());
@@ -259,29 +278,33 @@ std::vector<Vec2> read_robots(Section s, const ConvexPolygon& domain, std::uint6
     // Cell-centred: 3 × 3 on the unit square gives 1/6, 1/2, 5/6 (the paper's §VI-A start).
     auto nx = s.integer("nx", 3, 1, 10000), ny = s.integer("ny", 3, 1, 10000);
     if (nx * ny > caps.robots) {
-      s.error_at("ny", "a " + std::to_string(nx) + " x " + std::to_string(ny) + " grid has more than " +
-                           std::to_string(caps.robots) + " robots" + opt_in_hint(caps, kMaxRobotsHuge));
+      s.error_at("ny", "a " + std::to_string(nx) + " x " + std::to_string(ny) +
+                           " grid has more than " + std::to_string(caps.robots) + " robots" +
+                           opt_in_hint(caps, kMaxRobotsHuge));
       nx = ny = 1;
     }
     for (std::int64_t j = 0; j < ny; ++j)
       for (std::int64_t i = 0; i < nx; ++i)
-        robots.push_back(Vec2{lo.x() + (static_cast<double>(i) + 0.5) * (hi.x() - lo.x()) / static_cast<double>(nx),
-                              lo.y() + (static_cast<double>(j) + 0.5) * (hi.y() - lo.y()) / static_cast<double>(ny)});
+        robots.push_back(Vec2{
+            lo.x() + (static_cast<double>(i) + 0.5) * (hi.x() - lo.x()) / static_cast<double>(nx),
+            lo.y() + (static_cast<double>(j) + 0.5) * (hi.y() - lo.y()) / static_cast<double>(ny)});
     // The grid spans Ω's bounding box; in a non-rectangular Ω some of it may fall outside.
     OutsideList outside(s.reader());
     for (std::size_t i = 0; i < robots.size(); ++i)
       if (!protocols::contains(domain, robots[i]))
-        outside.add(s.where("layout"), s.path() + ".layout: robot " + std::to_string(i) + " of the " +
-                                           std::to_string(nx) + " x " + std::to_string(ny) + " grid, at " +
-                                           shown_point(robots[i]) +
-                                           ", lies outside the domain (use layout positions or random)");
+        outside.add(s.where("layout"),
+                    s.path() + ".layout: robot " + std::to_string(i) + " of the " +
+                        std::to_string(nx) + " x " + std::to_string(ny) + " grid, at " +
+                        shown_point(robots[i]) +
+                        ", lies outside the domain (use layout positions or random)");
     outside.finish("robots");
   } else {
     s.reject("nx", "'nx' applies to layout grid");
     s.reject("ny", "'ny' applies to layout grid");
   }
   if (layout == "positions") {
-    if (!s.has("positions")) s.error_at("positions", "layout positions needs 'positions: [[x, y], ...]'");
+    if (!s.has("positions"))
+      s.error_at("positions", "layout positions needs 'positions: [[x, y], ...]'");
     robots = s.points("positions", 1);
     if (static_cast<std::int64_t>(robots.size()) > caps.robots) {
       s.error_at("positions", "more than " + std::to_string(caps.robots) + " robots" +
@@ -291,8 +314,9 @@ std::vector<Vec2> read_robots(Section s, const ConvexPolygon& domain, std::uint6
     OutsideList outside(s.reader());
     for (std::size_t i = 0; i < robots.size(); ++i)
       if (!protocols::contains(domain, robots[i]))
-        outside.add(s.where("positions"), s.path() + ".positions: robot " + std::to_string(i) + " at " +
-                                              shown_point(robots[i]) + " lies outside the domain");
+        outside.add(s.where("positions"), s.path() + ".positions: robot " + std::to_string(i) +
+                                              " at " + shown_point(robots[i]) +
+                                              " lies outside the domain");
     outside.finish("robots");
   } else {
     s.reject("positions", "'positions' applies to layout positions");
@@ -317,7 +341,8 @@ std::vector<Vec2> read_robots(Section s, const ConvexPolygon& domain, std::uint6
   motion.k_v = s.number("k_v", 1.0, Range::non_negative());
   motion.max_speed = s.number("max_speed", 0.0, Range::non_negative());
   motion.substep_s = s.number("substep", 1e-3, Range::time());
-  motion.jump_to_target = s.choice<bool>("dynamics", false, {{"second_order", false}, {"discrete_lloyd", true}});
+  motion.jump_to_target =
+      s.choice<bool>("dynamics", false, {{"second_order", false}, {"discrete_lloyd", true}});
   s.finish();
   return robots;
 }

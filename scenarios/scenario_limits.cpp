@@ -35,24 +35,28 @@ double diffusion_step_s(const agents::DiffusionParams& p) {
   return std::min(p.dt_s, stable);
 }
 
-void check_work(const ScenarioDef& def, std::size_t sensor_count, const NodeCaps& caps, LimitSections& at) {
+void check_work(const ScenarioDef& def, std::size_t sensor_count, const NodeCaps& caps,
+                LimitSections& at) {
   const double duration = def.duration_s;
   const auto robots = static_cast<double>(def.world.robots.size());
   const auto sensors = static_cast<double>(sensor_count);
   std::vector<Work> work;
   if (def.world.protocol.kind != protocols::ProtocolKind::none)
-    work.push_back({"protocol updates", duration / def.world.protocol.period_s * robots, &at.protocol, "period"});
+    work.push_back({"protocol updates", duration / def.world.protocol.period_s * robots,
+                    &at.protocol, "period"});
   using agents::BeaconSenders;
   const BeaconSenders senders = def.world.beacons.senders;
   if (senders != BeaconSenders::none) {
     const double count = senders == BeaconSenders::robots    ? robots
                          : senders == BeaconSenders::sensors ? sensors
                                                              : robots + sensors;
-    work.push_back({"beacons", duration / def.world.beacons.period_s * count, &at.beacons, "period"});
+    work.push_back(
+        {"beacons", duration / def.world.beacons.period_s * count, &at.beacons, "period"});
   }
   const agents::MotionParams& motion = def.world.motion;
   if (motion.max_speed > 0.0 && !motion.jump_to_target)
-    work.push_back({"motion substeps", duration / motion.substep_s * robots, &at.robots, "substep"});
+    work.push_back(
+        {"motion substeps", duration / motion.substep_s * robots, &at.robots, "substep"});
   work.push_back({"trajectory rows", duration / def.output.trajectory_period_s * robots, &at.output,
                   "trajectory_period"});
   const agents::FieldDef& field = def.world.field;
@@ -73,19 +77,22 @@ void check_work(const ScenarioDef& def, std::size_t sensor_count, const NodeCaps
   }
   if (!caps.huge && largest && !(total <= kMaxPeriodicWork))
     largest->section->error_at(
-        largest->key, "the run would take about " + number_text(total) + " periodic steps (" + parts +
-                          "), more than the limit of " + number_text(kMaxPeriodicWork) +
-                          "; use a longer period or a shorter duration, or set limits.allow_huge: true");
+        largest->key,
+        "the run would take about " + number_text(total) + " periodic steps (" + parts +
+            "), more than the limit of " + number_text(kMaxPeriodicWork) +
+            "; use a longer period or a shorter duration, or set limits.allow_huge: true");
   const double samples = duration / def.output.sample_period_s;
   if (!caps.huge && !(samples <= kMaxSamples))
-    at.output.error_at("sample_period", "the run would write about " + number_text(samples) +
-                                            " timeseries rows, more than the limit of " + number_text(kMaxSamples) +
-                                            "; use a longer sample_period, or set limits.allow_huge: true");
+    at.output.error_at("sample_period",
+                       "the run would write about " + number_text(samples) +
+                           " timeseries rows, more than the limit of " + number_text(kMaxSamples) +
+                           "; use a longer sample_period, or set limits.allow_huge: true");
   // Physical mode takes ⌈dt / stable step⌉ substeps per step, counted in an int.
   if (field.kind == agents::FieldKind::diffusion &&
       !(field.diffusion.dt_s / diffusion_step_s(field.diffusion) <= 1e9))
-    diffusion.error_at("dt", "needs more than 1e+09 substeps per step (kappa too large for the grid); "
-                             "use a smaller dt, fewer cells or a smaller kappa");
+    diffusion.error_at("dt",
+                       "needs more than 1e+09 substeps per step (kappa too large for the grid); "
+                       "use a smaller dt, fewer cells or a smaller kappa");
 }
 
 // log10 of the largest density the field can reach, before density_scaling.
@@ -103,14 +110,16 @@ double peak_density_log10(const ScenarioDef& def, const char*& key) {
     case agents::FieldKind::gaussian: {
       key = "bumps";
       double sum = 0.0;
-      for (const auto& b : f.bumps) sum += b.amplitude;
+      for (const auto& b : f.bumps)
+        sum += b.amplitude;
       return std::log10(sum);
     }
     case agents::FieldKind::diffusion: {
       // At most what the sources inject over the run (rate · s), on one node.
       key = "sources";
       double sum = 0.0;
-      for (const auto& s : f.sources) sum += s.amplitude;
+      for (const auto& s : f.sources)
+        sum += s.amplitude;
       return sum > 0.0 ? std::log10(sum * std::max(def.duration_s, 1.0)) : 0.0;
     }
   }
@@ -121,22 +130,28 @@ void check_density(const ScenarioDef& def, LimitSections& at) {
   const char* key = "kind";
   const double peak = peak_density_log10(def, key);
   if (!(peak <= kMaxDensityLog10)) {
-    at.field.error_at(key, "the density could reach 1e" + number_text(peak) +
-                               " (amplitude over min_distance^alpha for acoustic fields), past the limit of 1e" +
-                               number_text(kMaxDensityLog10) + "; use a smaller amplitude or alpha, or a larger "
-                               "min_distance");
+    at.field.error_at(
+        key, "the density could reach 1e" + number_text(peak) +
+                 " (amplitude over min_distance^alpha for acoustic fields), past the limit of 1e" +
+                 number_text(kMaxDensityLog10) +
+                 "; use a smaller amplitude or alpha, or a larger "
+                 "min_distance");
     return;
   }
   const protocols::DensityScaling& sk = def.world.scaling;
-  if (sk.kind == protocols::ScalingKind::power && peak > 0.0 && !(peak * sk.gamma <= kMaxDensityLog10))
-    at.scaling.error_at("gamma", "the scaled density could reach 1e" + number_text(peak * sk.gamma) +
-                                     " (the peak density 1e" + number_text(peak) + " to the power gamma), past the limit of 1e" +
+  if (sk.kind == protocols::ScalingKind::power && peak > 0.0 &&
+      !(peak * sk.gamma <= kMaxDensityLog10))
+    at.scaling.error_at("gamma", "the scaled density could reach 1e" +
+                                     number_text(peak * sk.gamma) + " (the peak density 1e" +
+                                     number_text(peak) +
+                                     " to the power gamma), past the limit of 1e" +
                                      number_text(kMaxDensityLog10) + "; use a smaller gamma");
 }
 
 }  // namespace
 
-void check_limits(const ScenarioDef& def, std::size_t sensor_count, const NodeCaps& caps, LimitSections& at) {
+void check_limits(const ScenarioDef& def, std::size_t sensor_count, const NodeCaps& caps,
+                  LimitSections& at) {
   check_work(def, sensor_count, caps, at);
   check_density(def, at);
 }

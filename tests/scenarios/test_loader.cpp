@@ -165,7 +165,7 @@ const std::vector<Case> kCases = {
      {"yaml_tags.yaml:1:11: YAML tags are not supported (got '!!str'); write the value alone, quoted if it must stay a text",
       "yaml_tags.yaml:3:10: YAML tags are not supported (got '!foo'); write the value alone, quoted if it must stay a text"}},
     {"alias_bomb.yaml",
-     {"alias_bomb.yaml:8:45: the aliases (*name) repeat more than 1000000 nodes in all (docs/scenario-reference.md, \"Limits\")"}},
+     {"alias_bomb.yaml:7:45: the aliases (*name) repeat more than 100000 nodes in all (docs/scenario-reference.md, \"Limits\")"}},
     {"long_value.yaml",
      {"long_value.yaml:4:10: radio.level: expected one of ideal, airtime, collision, got 'abababababababababababababababababababababababababababababababababababababababab… (1000000 bytes in all)'"}},
     {"period_below_resolution.yaml",
