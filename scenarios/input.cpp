@@ -93,7 +93,7 @@ class YamlScan : public YAML::EventHandler {
   void OnDocumentStart(const YAML::Mark& mark) override {
     if (++documents_ > 1) {
       report(mark,
-             "a second YAML document starts here (a scenario holds a single document; "
+             "a second YAML document starts here (the file must hold a single document; "
              "remove the '---' and what follows)");
       throw StopScan{};
     }

@@ -61,8 +61,10 @@ struct LoadResult {
 LoadResult load_scenario(const std::string& path, const std::vector<std::string>& overrides,
                          std::optional<std::uint64_t> seed = std::nullopt, const LoadOptions& options = {});
 
-/// The same from YAML text (tests); `file_name` is used in messages and to resolve
-/// relative paths (sensor files).
+/// The same from YAML text (tests, fuzzing); `file_name` is used in messages and to resolve
+/// relative paths (sensor files). Bounded for any text: with `allow_huge` off, at most 10^7
+/// sensors and 10^6 robots are built and aliases repeat at most 10^5 nodes, so 64 KiB of input
+/// cannot take more than about 300 MB or a second (docs/scenario-reference.md, "Limits").
 LoadResult load_scenario_text(const std::string& text, const std::string& file_name,
                               const std::vector<std::string>& overrides,
                               std::optional<std::uint64_t> seed = std::nullopt,

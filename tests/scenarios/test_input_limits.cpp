@@ -331,7 +331,7 @@ TEST_CASE("a sweep file's aliases, tags and extra documents are refused", "[scen
                                  "(docs/scenario-reference.md, \"Limits\")"});
   CHECK(texts(load_sweep_text("base: ../paper/acoustic_tracking.yaml\n---\n", file).diagnostics) ==
         std::vector<std::string>{
-            file + ":2:1: a second YAML document starts here (a scenario holds a single "
+            file + ":2:1: a second YAML document starts here (the file must hold a single "
                    "document; remove the '---' and what follows)"});
   const SweepLoad fifo = load_sweep("/dev/zero");
   CHECK(texts(fifo.diagnostics) ==

@@ -160,7 +160,7 @@ const std::vector<Case> kCases = {
     {"name_with_control_characters.yaml",
      {"name_with_control_characters.yaml:3:7: name: 'a\\x09b\\x1B[31m' is not a valid name (it names the run directory: use 1 to 64 of the characters A-Z a-z 0-9 . _ -, not starting with '.' or '-')"}},
     {"second_document.yaml",
-     {"second_document.yaml:2:1: a second YAML document starts here (a scenario holds a single document; remove the '---' and what follows)"}},
+     {"second_document.yaml:2:1: a second YAML document starts here (the file must hold a single document; remove the '---' and what follows)"}},
     {"yaml_tags.yaml",
      {"yaml_tags.yaml:1:11: YAML tags are not supported (got '!!str'); write the value alone, quoted if it must stay a text",
       "yaml_tags.yaml:3:10: YAML tags are not supported (got '!foo'); write the value alone, quoted if it must stay a text"}},
