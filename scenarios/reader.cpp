@@ -452,17 +452,21 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 }
 
 std::optional<std::string> closest(std::string_view word, const std::vector<std::string>& candidates) {
+  // A plausible typo: at most a third of the word wrong (and at least one edit allowed).
+  const std::size_t allowed = std::max<std::size_t>(1, word.size() / 3);
   std::optional<std::string> best;
   std::size_t best_distance = 0;
   for (const auto& c : candidates) {
+    // The distance is at least the difference in length: a megabyte key costs nothing.
+    const std::size_t longer = std::max(word.size(), c.size()), shorter = std::min(word.size(), c.size());
+    if (longer - shorter > allowed) continue;
     const std::size_t d = edit_distance(word, c);
     if (!best || d < best_distance) {
       best = c;
       best_distance = d;
     }
   }
-  // A plausible typo: at most a third of the word wrong (and at least one edit allowed).
-  if (best && best_distance <= std::max<std::size_t>(1, word.size() / 3)) return best;
+  if (best && best_distance <= allowed) return best;
   return std::nullopt;
 }
 
