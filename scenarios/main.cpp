@@ -1,6 +1,8 @@
 // The `masnet` command line (SPEC §7). Exit codes: 0 success, 2 bad input, 1 internal error.
+#include <charconv>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <iostream>
 #include <optional>
 #include <thread>
@@ -35,15 +37,34 @@ struct RunArgs {
   std::string scenario;
   std::string out;
   std::vector<std::string> sets;
-  std::int64_t seed = -1;
+  std::string seed;  ///< parsed here, not by CLI11, which clamps out-of-range numbers
+  bool seed_given = false;
   bool force = false;
   bool quiet = false;
   bool baseline = false;
 };
 
+// --seed takes the same range as the scenario's `seed` key: 0 … 2^63 − 1.
+std::optional<std::uint64_t> parse_seed(const std::string& text, Diagnostic& problem) {
+  std::uint64_t value = 0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (text.empty() || ec != std::errc() || ptr != end ||
+      value > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
+    problem = {"--seed " + shown_text(text), "expected a whole number between 0 and " +
+                                                  std::to_string(std::numeric_limits<std::int64_t>::max())};
+    return std::nullopt;
+  }
+  return value;
+}
+
 int command_run(const RunArgs& args) {
   std::optional<std::uint64_t> seed;
-  if (args.seed >= 0) seed = static_cast<std::uint64_t>(args.seed);
+  if (!args.seed.empty() || args.seed_given) {
+    Diagnostic problem;
+    seed = parse_seed(args.seed, problem);
+    if (!seed) return print_diagnostics({problem});
+  }
   std::vector<std::string> sets = args.sets;
   if (args.baseline) sets.push_back("control.baseline=true");  // same as the scenario key
   LoadResult loaded = load_scenario(args.scenario, sets, seed);
@@ -154,11 +175,14 @@ int command_render(const RenderArgs& args) {
 }
 
 int command_validate(const std::string& scenario, const std::vector<std::string>& sets) {
-  LoadResult loaded = load_scenario(scenario, sets);
+  // The same checks as `run`, but the sensors are only counted, not built.
+  LoadOptions options;
+  options.build_sensors = false;
+  LoadResult loaded = load_scenario(scenario, sets, std::nullopt, options);
   if (!loaded.scenario) return print_diagnostics(loaded.diagnostics);
   const ScenarioDef& def = *loaded.scenario;
-  std::printf("%s: ok (%zu sensors, %zu robots, %.3f s)\n", scenario.c_str(),
-              def.world.sensors.size(), def.world.robots.size(), def.duration_s);
+  std::printf("%s: ok (%zu sensors, %zu robots, %.3f s)\n", scenario.c_str(), def.sensor_count,
+              def.world.robots.size(), def.duration_s);
   return 0;
 }
 
@@ -173,8 +197,8 @@ int main(int argc, char** argv) {
   CLI::App* run = app.add_subcommand("run", "run a scenario and write its run directory");
   run->add_option("scenario", run_args.scenario, "scenario file (YAML)")->required();
   run->add_option("--out", run_args.out, "run directory (default: runs/<name>-seed<seed>)");
-  run->add_option("--seed", run_args.seed, "override the scenario's seed")
-      ->check(CLI::NonNegativeNumber);
+  CLI::Option* seed_option =
+      run->add_option("--seed", run_args.seed, "override the scenario's seed (0 ... 2^63-1)");
   run->add_option("--set", run_args.sets, "override a key: --set radio.loss=0.2 (repeatable)");
   run->add_flag("--force", run_args.force, "replace a different run's directory");
   run->add_flag("--quiet", run_args.quiet, "no progress and no summary line");
@@ -207,6 +231,7 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? 0 : kBadInput;
   }
+  run_args.seed_given = seed_option->count() > 0;
   spdlog::set_pattern("%v");
   try {
     if (*run) return command_run(run_args);

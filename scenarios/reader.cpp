@@ -16,12 +16,12 @@ std::string ScenarioReader::location(const YAML::Node& node, const std::string& 
   for (const auto& [override_path, text] : overrides_)
     if (path == override_path || path.rfind(override_path + ".", 0) == 0 ||
         path.rfind(override_path + "[", 0) == 0)
-      return "--set " + text;
+      return "--set " + shown_text(text);
   const YAML::Mark mark = node.Mark();
   if (mark.is_null()) {
     // A node without a mark was created by an override of a key below it (--set groups.x=1).
     for (const auto& [override_path, text] : overrides_)
-      if (override_path.rfind(path + ".", 0) == 0) return "--set " + text;
+      if (override_path.rfind(path + ".", 0) == 0) return "--set " + shown_text(text);
     return file_name_ + ":1:1";
   }
   return file_name_ + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
@@ -38,18 +38,91 @@ bool Range::contains(double v) const {
   return true;
 }
 
-std::string Range::describe() const {
+std::string Range::describe(double v) const {
   auto num = [](double x) {
     std::ostringstream out;
     out << x;
     return out.str();
   };
-  const bool has_lo = lo > -1e307, has_hi = hi < 1e307;
-  if (has_lo && has_hi)
-    return std::string("in ") + (lo_open ? "(" : "[") + num(lo) + ", " + num(hi) + (hi_open ? ")" : "]");
-  if (has_lo) return lo == 0.0 ? (lo_open ? "> 0" : ">= 0") : (lo_open ? "> " : ">= ") + num(lo);
-  if (has_hi) return (hi_open ? "< " : "<= ") + num(hi);
-  return "a finite number";
+  const bool has_lo = lo > -kMaxMagnitude, has_hi = hi < kMaxMagnitude;
+  std::string lower = lo == 0.0 ? (lo_open ? "> 0" : ">= 0") : (lo_open ? "> " : ">= ") + num(lo);
+  // A time: "> 0" unless the value is positive but shorter than the clock's resolution.
+  if (lo == kMinTime_s) lower = v > 0.0 && v < lo ? ">= 1e-09 (1 ns, the clock's resolution)" : "> 0";
+  const std::string upper = (hi_open ? "< " : "<= ") + num(hi);
+  // Bounds at the time and magnitude caps are limits, not the key's natural range: the message
+  // names the one that was passed.
+  const bool natural_hi = hi < kMaxTime_s;
+  std::string bounds;
+  if (has_lo && has_hi && natural_hi && lo != kMinTime_s)
+    bounds = std::string("in ") + (lo_open ? "(" : "[") + num(lo) + ", " + num(hi) + (hi_open ? ")" : "]");
+  else if (std::isfinite(v) && v > hi)
+    bounds = upper;  // past a cap
+  else if (has_lo)
+    bounds = lower;
+  else if (has_hi)
+    bounds = upper;
+  else
+    bounds = "in [" + num(lo) + ", " + num(hi) + "]";
+  return std::isfinite(v) ? bounds : "finite and " + bounds;
+}
+
+std::size_t utf8_sequence_length(std::string_view text, std::size_t at) {
+  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
+  const unsigned char lead = byte(at);
+  if (lead < 0x80) return 1;
+  std::size_t length = 0;
+  unsigned min_second = 0x80, max_second = 0xBF;  // the second byte's range (RFC 3629)
+  if (lead >= 0xC2 && lead <= 0xDF) {
+    length = 2;
+  } else if (lead >= 0xE0 && lead <= 0xEF) {
+    length = 3;
+    if (lead == 0xE0) min_second = 0xA0;  // overlong
+    if (lead == 0xED) max_second = 0x9F;  // surrogates
+  } else if (lead >= 0xF0 && lead <= 0xF4) {
+    length = 4;
+    if (lead == 0xF0) min_second = 0x90;  // overlong
+    if (lead == 0xF4) max_second = 0x8F;  // beyond U+10FFFF
+  } else {
+    return 0;
+  }
+  if (at + length > text.size()) return 0;
+  if (byte(at + 1) < min_second || byte(at + 1) > max_second) return 0;
+  for (std::size_t k = 2; k < length; ++k)
+    if (byte(at + k) < 0x80 || byte(at + k) > 0xBF) return 0;
+  return length;
+}
+
+std::size_t first_invalid_utf8(std::string_view text) {
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t n = utf8_sequence_length(text, i);
+    if (n == 0) return i;
+    i += n;
+  }
+  return std::string_view::npos;
+}
+
+std::string shown_text(std::string_view text) {
+  constexpr std::size_t kMaxShown = 80;  // characters, an escape counting as its four
+  std::string out;
+  std::size_t shown = 0, i = 0;
+  while (i < text.size() && shown < kMaxShown) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    const std::size_t n = utf8_sequence_length(text, i);
+    if (n == 0 || c < 0x20 || c == 0x7F) {
+      static const char* hex = "0123456789ABCDEF";
+      out += "\\x";
+      out += hex[c >> 4];
+      out += hex[c & 15];
+      shown += 4;
+      ++i;
+    } else {
+      out.append(text.substr(i, n));
+      ++shown;
+      i += n;
+    }
+  }
+  if (i < text.size()) out += "… (" + std::to_string(text.size()) + " bytes in all)";
+  return out;
 }
 
 Section::Section(ScenarioReader& reader, YAML::Node node, std::string path, std::string pointer)
@@ -57,6 +130,13 @@ Section::Section(ScenarioReader& reader, YAML::Node node, std::string path, std:
 
 std::string Section::child_path(std::string_view key) const {
   return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+}
+
+YAML::Node Section::key_node(std::string_view key) const {
+  if (!node_ || !node_.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
+  for (auto it = node_.begin(); it != node_.end(); ++it)
+    if (it->first.IsScalar() && it->first.Scalar() == key) return it->first;
+  return YAML::Node(YAML::NodeType::Undefined);
 }
 
 YAML::Node Section::child(std::string_view key) const {
@@ -72,7 +152,8 @@ std::string Section::where() const { return reader_->location(node_, path_); }
 
 std::string Section::where(std::string_view key) const {
   const YAML::Node value = child(key);
-  return value.IsDefined() ? reader_->location(value, child_path(key)) : where();
+  if (!value.IsDefined()) return where();
+  return reader_->location(value.IsNull() ? key_node(key) : value, child_path(key));
 }
 
 void Section::error_at(std::string_view key, const std::string& message) {
@@ -85,7 +166,7 @@ void Section::resolve(std::string_view key, nlohmann::json value) {
 
 namespace {
 std::string shown(const YAML::Node& node) {
-  if (node.IsScalar()) return "'" + node.Scalar() + "'";
+  if (node.IsScalar()) return "'" + shown_text(node.Scalar()) + "'";
   if (node.IsSequence()) {
     // A short list of scalars is shown as written ("[1, 2, 3]"): "got a list" would puzzle
     // someone who was asked for a point, which is a list too.
@@ -94,11 +175,11 @@ std::string shown(const YAML::Node& node) {
       if (!item.IsScalar()) return "a list of " + std::to_string(node.size()) + " items";
       items += (items.empty() ? "" : ", ") + item.Scalar();
     }
-    if (items.size() <= 40) return "[" + items + "]";
+    if (items.size() <= 40) return "[" + shown_text(items) + "]";
     return "a list of " + std::to_string(node.size()) + " items";
   }
   if (node.IsMap()) return "a mapping";
-  return "nothing";
+  return "nothing (null)";
 }
 }  // namespace
 
@@ -106,12 +187,12 @@ double Section::number(std::string_view key, double fallback, Range range) {
   known_.emplace(key);
   const YAML::Node value = child(key);
   double result = fallback;
-  if (value.IsDefined() && !value.IsNull()) {
+  if (value.IsDefined()) {
     double parsed = 0.0;
     if (!value.IsScalar() || !YAML::convert<double>::decode(value, parsed)) {
       error_at(key, "expected a number, got " + shown(value));
     } else if (!range.contains(parsed)) {
-      error_at(key, "must be " + range.describe() + " (got " + value.Scalar() + ")");
+      error_at(key, "must be " + range.describe(parsed) + " (got " + shown_text(value.Scalar()) + ")");
     } else {
       result = parsed;
     }
@@ -125,13 +206,13 @@ std::int64_t Section::integer(std::string_view key, std::int64_t fallback, std::
   known_.emplace(key);
   const YAML::Node value = child(key);
   std::int64_t result = fallback;
-  if (value.IsDefined() && !value.IsNull()) {
+  if (value.IsDefined()) {
     long long parsed = 0;
     if (!value.IsScalar() || !YAML::convert<long long>::decode(value, parsed)) {
       error_at(key, "expected a whole number, got " + shown(value));
     } else if (parsed < lo || parsed > hi) {
       error_at(key, "must be between " + std::to_string(lo) + " and " + std::to_string(hi) +
-                        " (got " + value.Scalar() + ")");
+                        " (got " + shown_text(value.Scalar()) + ")");
     } else {
       result = parsed;
     }
@@ -144,7 +225,7 @@ bool Section::boolean(std::string_view key, bool fallback) {
   known_.emplace(key);
   const YAML::Node value = child(key);
   bool result = fallback;
-  if (value.IsDefined() && !value.IsNull()) {
+  if (value.IsDefined()) {
     bool parsed = false;
     if (!value.IsScalar() || !YAML::convert<bool>::decode(value, parsed))
       error_at(key, "expected true or false, got " + shown(value));
@@ -159,7 +240,7 @@ std::string Section::text(std::string_view key, std::string fallback) {
   known_.emplace(key);
   const YAML::Node value = child(key);
   std::string result = std::move(fallback);
-  if (value.IsDefined() && !value.IsNull()) {
+  if (value.IsDefined()) {
     if (!value.IsScalar())
       error_at(key, "expected a text, got " + shown(value));
     else
@@ -174,7 +255,7 @@ std::string Section::choose(std::string_view key, const std::vector<std::string>
   known_.emplace(key);
   const YAML::Node value = child(key);
   std::string result = fallback;
-  if (value.IsDefined() && !value.IsNull()) {
+  if (value.IsDefined()) {
     if (!value.IsScalar() || std::find(names.begin(), names.end(), value.Scalar()) == names.end()) {
       std::string list;
       for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
@@ -204,14 +285,27 @@ bool decode_point(const YAML::Node& node, Vec2& out) {
 nlohmann::json json_point(const Vec2& p) { return nlohmann::json::array({p.x(), p.y()}); }
 }  // namespace
 
+namespace {
+
+// Coordinates and velocities beyond kMaxMagnitude overflow downstream (start + velocity·t,
+// squared distances): they are an error like a value that is not a point.
+std::string point_problem(const YAML::Node& node, Vec2& out) {
+  if (!decode_point(node, out)) return "expected a point [x, y], got " + shown(node);
+  if (!(std::fabs(out.x()) <= kMaxMagnitude && std::fabs(out.y()) <= kMaxMagnitude))
+    return "coordinates must be within ±1e+12, got " + shown(node);
+  return "";
+}
+
+}  // namespace
+
 Vec2 Section::point(std::string_view key, Vec2 fallback) {
   known_.emplace(key);
   const YAML::Node value = child(key);
   Vec2 result = fallback;
-  if (value.IsDefined() && !value.IsNull()) {
+  if (value.IsDefined()) {
     Vec2 parsed;
-    if (!decode_point(value, parsed))
-      error_at(key, "expected a point [x, y], got " + shown(value));
+    if (std::string problem = point_problem(value, parsed); !problem.empty())
+      error_at(key, problem);
     else
       result = parsed;
   }
@@ -223,16 +317,15 @@ std::vector<Vec2> Section::points(std::string_view key, std::size_t min_count) {
   known_.emplace(key);
   const YAML::Node value = child(key);
   std::vector<Vec2> result;
-  if (value.IsDefined() && !value.IsNull()) {
+  if (value.IsDefined()) {
     if (!value.IsSequence()) {
       error_at(key, "expected a list of points [[x, y], ...], got " + shown(value));
     } else {
       for (std::size_t i = 0; i < value.size(); ++i) {
         Vec2 p;
-        if (!decode_point(value[i], p)) {
+        if (std::string problem = point_problem(value[i], p); !problem.empty()) {
           reader_->error(reader_->location(value[i], child_path(key)),
-                         child_path(key) + "[" + std::to_string(i) + "]: expected a point [x, y], got " +
-                             shown(value[i]));
+                         child_path(key) + "[" + std::to_string(i) + "]: " + problem);
           continue;
         }
         result.push_back(p);
@@ -252,7 +345,7 @@ std::vector<double> Section::numbers(std::string_view key, Range range) {
   known_.emplace(key);
   const YAML::Node value = child(key);
   std::vector<double> result;
-  if (value.IsDefined() && !value.IsNull()) {
+  if (value.IsDefined()) {
     if (!value.IsSequence()) {
       error_at(key, "expected a list of numbers, got " + shown(value));
     } else {
@@ -264,7 +357,7 @@ std::vector<double> Section::numbers(std::string_view key, Range range) {
                          item + ": expected a number, got " + shown(value[i]));
         } else if (!range.contains(x)) {
           reader_->error(reader_->location(value[i], child_path(key)),
-                         item + ": must be " + range.describe() + " (got " + value[i].Scalar() + ")");
+                         item + ": must be " + range.describe(x) + " (got " + shown_text(value[i].Scalar()) + ")");
         } else {
           result.push_back(x);
         }
@@ -280,7 +373,7 @@ Section Section::section(std::string_view key) {
   YAML::Node value = child(key);
   const std::string path = child_path(key);
   const std::string pointer = pointer_ + "/" + std::string(key);
-  if (value.IsDefined() && !value.IsNull() && !value.IsMap()) {
+  if (value.IsDefined() && !value.IsMap()) {
     error_at(key, "expected a mapping of keys, got " + shown(value));
     value = YAML::Node(YAML::NodeType::Undefined);
   }
@@ -294,7 +387,7 @@ std::vector<Section> Section::sections(std::string_view key) {
   std::vector<Section> result;
   const std::string pointer = pointer_ + "/" + std::string(key);
   reader_->resolved()[nlohmann::json::json_pointer(pointer)] = nlohmann::json::array();
-  if (!value.IsDefined() || value.IsNull()) return result;
+  if (!value.IsDefined()) return result;
   if (!value.IsSequence()) {
     error_at(key, "expected a list, got " + shown(value));
     return result;
@@ -330,13 +423,13 @@ void Section::finish() {
       const auto [first, inserted] = first_line.emplace(key, it->first.Mark().line + 1);
       if (!inserted) {
         reader_->error(reader_->location(it->first, child_path(key)),
-                       "duplicate key '" + key + "'" + (path_.empty() ? std::string() : " in '" + path_ + "'") +
+                       "duplicate key '" + shown_text(key) + "'" + (path_.empty() ? std::string() : " in '" + path_ + "'") +
                            " (first given on line " + std::to_string(first->second) + ")");
         continue;
       }
     }
     if (known_.count(key)) continue;
-    std::string message = "unknown key '" + key + "'" +
+    std::string message = "unknown key '" + shown_text(key) + "'" +
                           (path_.empty() ? std::string() : " in '" + path_ + "'");
     if (auto guess = closest(key, known)) message += " (did you mean '" + *guess + "'?)";
     reader_->error(reader_->location(it->first, child_path(key)), message);
@@ -359,17 +452,21 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 }
 
 std::optional<std::string> closest(std::string_view word, const std::vector<std::string>& candidates) {
+  // A plausible typo: at most a third of the word wrong (and at least one edit allowed).
+  const std::size_t allowed = std::max<std::size_t>(1, word.size() / 3);
   std::optional<std::string> best;
   std::size_t best_distance = 0;
   for (const auto& c : candidates) {
+    // The distance is at least the difference in length: a megabyte key costs nothing.
+    const std::size_t longer = std::max(word.size(), c.size()), shorter = std::min(word.size(), c.size());
+    if (longer - shorter > allowed) continue;
     const std::size_t d = edit_distance(word, c);
     if (!best || d < best_distance) {
       best = c;
       best_distance = d;
     }
   }
-  // A plausible typo: at most a third of the word wrong (and at least one edit allowed).
-  if (best && best_distance <= std::max<std::size_t>(1, word.size() / 3)) return best;
+  if (best && best_distance <= allowed) return best;
   return std::nullopt;
 }
 

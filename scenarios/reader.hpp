@@ -51,25 +51,56 @@ class ScenarioReader {
   nlohmann::json resolved_ = nlohmann::json::object();
 };
 
-/// A closed interval check for numbers; `lo_open`/`hi_open` exclude an end.
+/// The largest magnitude a number of the scenario may have (docs/scenario-reference.md,
+/// "Limits"): positions, speeds and amplitudes beyond it overflow downstream (squared distances,
+/// positions after a long run).
+inline constexpr double kMaxMagnitude = 1e12;
+/// The longest time in seconds (durations, periods, delays): about 31.7 years, so that sums of
+/// a few times stay inside the integer-nanosecond clock (±292 years).
+inline constexpr double kMaxTime_s = 1e9;
+/// The shortest positive time: the clock's resolution (shorter periods would round to 0).
+inline constexpr double kMinTime_s = 1e-9;
+
+/// A closed interval check for numbers; `lo_open`/`hi_open` exclude an end. Unbounded ends stop
+/// at ±kMaxMagnitude.
 struct Range {
-  double lo = -1e308, hi = 1e308;
+  double lo = -kMaxMagnitude, hi = kMaxMagnitude;
   bool lo_open = false, hi_open = false;
-  static Range positive() { return {0.0, 1e308, true, false}; }
-  static Range non_negative() { return {0.0, 1e308, false, false}; }
+  static Range positive() { return {0.0, kMaxMagnitude, true, false}; }
+  static Range non_negative() { return {0.0, kMaxMagnitude, false, false}; }
   static Range unit() { return {0.0, 1.0, false, false}; }
+  /// A time that the clock can hold and that does not round to 0: [1 ns, 10^9 s].
+  static Range time() { return {kMinTime_s, kMaxTime_s, false, false}; }
+  /// A delay that may be 0: [0, 10^9 s].
+  static Range delay() { return {0.0, kMaxTime_s, false, false}; }
   bool contains(double v) const;
-  std::string describe() const;
+  /// What `v` breaks: "> 0", "in [0, 1)", "<= 1e+12", "finite and > 0".
+  std::string describe(double v) const;
 };
 
+/// A value as messages show it: non-printable bytes and bytes that are not UTF-8 as \xNN, and
+/// at most 80 characters, longer values cut with "…" and their length. Every value or key a
+/// message echoes goes through here (raw bytes would reach the terminal).
+std::string shown_text(std::string_view text);
+/// The length of the UTF-8 sequence starting at `at`, or 0 if the bytes there are not UTF-8.
+std::size_t utf8_sequence_length(std::string_view text, std::size_t at);
+/// The offset of the first byte that is not UTF-8, or npos.
+std::size_t first_invalid_utf8(std::string_view text);
+
 /// A YAML mapping at a dotted path. Accessors return the value or the fallback (when the key
-/// is absent or bad), and remember the key as known for `finish()`.
+/// is absent or bad), and remember the key as known for `finish()`. A key given with no value
+/// (null) is an error, never the default: `duration:` is not a duration.
 class Section {
  public:
   Section(ScenarioReader& reader, YAML::Node node, std::string path, std::string pointer);
 
   const std::string& path() const { return path_; }
+  ScenarioReader& reader() const { return *reader_; }
   bool has(std::string_view key) const;
+  /// The mapping at `key` for locating messages only: nothing is resolved or marked known.
+  Section peek(std::string_view key) const {
+    return Section(*reader_, child(key), child_path(key), pointer_ + "/" + std::string(key));
+  }
   /// Location of `key`'s value, or of the section itself when absent.
   std::string where(std::string_view key) const;
   std::string where() const;
@@ -119,6 +150,8 @@ class Section {
                      const std::string& fallback);
   std::string child_path(std::string_view key) const;
   YAML::Node child(std::string_view key) const;
+  /// The key's own node (for locating a null value, which yaml-cpp marks on the next line).
+  YAML::Node key_node(std::string_view key) const;
 
   ScenarioReader* reader_;
   YAML::Node node_;

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <sstream>
 
-#include "sim/random.hpp"
+#include "scenarios/input.hpp"
+#include "scenarios/scenario_parts.hpp"
 
 namespace masnet::scenarios {
 namespace {
@@ -36,7 +36,7 @@ std::vector<std::string> split_path(const std::string& path) {
 bool apply_override(YAML::Node& root, const std::string& text, std::vector<Override>& applied,
                     std::vector<Diagnostic>& diagnostics) {
   const auto eq = text.find('=');
-  const std::string where = "--set " + text;
+  const std::string where = "--set " + shown_text(text);
   if (eq == std::string::npos || eq == 0) {
     diagnostics.push_back({where, "expected KEY.PATH=VALUE"});
     return false;
@@ -45,9 +45,14 @@ bool apply_override(YAML::Node& root, const std::string& text, std::vector<Overr
   const std::vector<std::string> parts = split_path(path);
   for (const auto& p : parts)
     if (p.empty()) {
-      diagnostics.push_back({where, "empty key in '" + path + "'"});
+      diagnostics.push_back({where, "empty key in '" + shown_text(path) + "'"});
       return false;
     }
+  // The same checks as a file's text: valid UTF-8 (summary.json is JSON), no tags, bounded aliases.
+  if (auto problems = check_yaml_text(text.substr(eq + 1), "", where); !problems.empty()) {
+    diagnostics.insert(diagnostics.end(), problems.begin(), problems.end());
+    return false;
+  }
   YAML::Node value;
   try {
     value = YAML::Load(text.substr(eq + 1));
@@ -69,7 +74,8 @@ bool apply_override(YAML::Node& root, const std::string& text, std::vector<Overr
     } else if (!next.IsMap()) {
       std::string prefix;
       for (std::size_t k = 0; k <= i; ++k) prefix += (k ? "." : "") + parts[k];
-      diagnostics.push_back({where, "'" + prefix + "' is not a section, cannot set '" + path + "'"});
+      diagnostics.push_back(
+          {where, "'" + shown_text(prefix) + "' is not a section, cannot set '" + shown_text(path) + "'"});
       return false;
     }
     node.reset(next);
@@ -80,13 +86,6 @@ bool apply_override(YAML::Node& root, const std::string& text, std::vector<Overr
 }
 
 // ---- Sections --------------------------------------------------------------------------------
-
-// "(1.5, 0.5)": a point as the user would have written it, for messages.
-std::string shown_point(const Vec2& p) {
-  std::ostringstream out;
-  out << "(" << p.x() << ", " << p.y() << ")";
-  return out.str();
-}
 
 ConvexPolygon read_domain(Section s) {
   ConvexPolygon domain = protocols::rectangle(0, 0, 1, 1);
@@ -191,7 +190,7 @@ agents::FieldDef read_field(Section s, const ConvexPolygon& domain) {
     p.kappa = d.number("kappa", p.kappa, Range::positive());
     p.cells = static_cast<int>(d.integer("cells", p.cells, 2, 4096));
     p.cells_y = static_cast<int>(d.integer("cells_y", 0, 0, 4096));
-    p.dt_s = d.number("dt", p.dt_s, Range::positive());
+    p.dt_s = d.number("dt", p.dt_s, Range::time());
     if (d.has("clip")) p.clip_sprays_at_zero = d.boolean("clip", false);
     // The PDE lives on a rectangle: Ω must be one, and gives the grid its extent.
     Vec2 lo = domain.vertices[0], hi = domain.vertices[0];
@@ -266,224 +265,14 @@ protocols::DensityScaling read_scaling(Section s) {
   return sk;
 }
 
-struct SensorLayout {
-  std::string kind;
-  double spacing = 0.0;  // h: grid spacing or sqrt(area / n)
-};
-
-// `lines` receives the line number of each sensor, to locate later checks in the CSV file.
-std::vector<agents::SensorDef> read_sensor_file(const std::string& path, Section& s,
-                                                ScenarioReader& reader, std::vector<int>& lines) {
-  std::vector<agents::SensorDef> sensors;
-  std::ifstream in(path);
-  if (!in) {
-    s.error_at("file", "cannot read sensor file '" + path + "'");
-    return sensors;
-  }
-  std::string line;
-  int number = 0;
-  while (std::getline(in, line)) {
-    ++number;
-    if (line.empty() || line[0] == '#') continue;
-    std::vector<double> cols;
-    std::stringstream fields(line);
-    std::string field;
-    std::size_t column = 0, bad_column = 0;  // 0-based offset of the first non-number
-    std::string bad_field;
-    bool numeric = true;
-    while (std::getline(fields, field, ',')) {
-      char* end = nullptr;
-      const double v = std::strtod(field.c_str(), &end);
-      while (end && *end == ' ') ++end;
-      if (numeric && (end == field.c_str() || (end && *end != '\0' && *end != '\r'))) {
-        numeric = false;
-        bad_column = column;
-        bad_field = field;
-        if (!bad_field.empty() && bad_field.back() == '\r') bad_field.pop_back();
-      }
-      cols.push_back(v);
-      column += field.size() + 1;
-    }
-    if (!numeric) {
-      if (number == 1) continue;  // a header line
-      reader.error(path + ":" + std::to_string(number) + ":" + std::to_string(bad_column + 1),
-                   "expected a number, got '" + bad_field + "' (lines are 'x,y' or 'x,y,area')");
-      continue;
-    }
-    if (cols.size() != 2 && cols.size() != 3) {
-      reader.error(path + ":" + std::to_string(number) + ":1",
-                   "expected 2 or 3 columns (x,y[,area]), got " + std::to_string(cols.size()));
-      continue;
-    }
-    if (cols.size() == 3 && !(cols[2] > 0.0 && std::isfinite(cols[2]))) {
-      reader.error(path + ":" + std::to_string(number) + ":1", "the area (third column) must be > 0");
-      continue;
-    }
-    agents::SensorDef d;
-    d.position = Vec2{cols[0], cols[1]};
-    d.area = cols.size() == 3 ? cols[2] : 0.0;
-    sensors.push_back(d);
-    lines.push_back(number);
-  }
-  return sensors;
-}
-
-std::vector<agents::SensorDef> read_sensors(Section s, const ConvexPolygon& domain, std::uint64_t seed,
-                                            const std::string& base_dir, ScenarioReader& reader,
-                                            SensorLayout& layout, double& noise_sigma) {
-  std::vector<agents::SensorDef> sensors;
-  layout.kind = s.choice<std::string>("layout", "grid", {{"grid", "grid"}, {"random", "random"}, {"file", "file"}});
-  noise_sigma = s.number("noise", 0.0, Range::non_negative());
-  Vec2 lo = domain.vertices[0], hi = domain.vertices[0];
-  for (const Vec2& v : domain.vertices) {
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
-  const double domain_area = protocols::area(domain);
-  if (layout.kind == "grid") {
-    auto nx = s.integer("nx", 10, 1, 100000), ny = s.integer("ny", 10, 1, 100000);
-    // The same cap as a random layout's count: a typo must not exhaust memory while validating.
-    if (nx * ny > 100000000) {
-      s.error_at("ny", "a " + std::to_string(nx) + " x " + std::to_string(ny) + " grid has more than 100000000 sensors");
-      nx = ny = 1;
-    }
-    const std::string alignment = s.choice<std::string>(
-        "alignment", "cell_centred",
-        {{"cell_centred", "cell_centred"}, {"node_aligned", "node_aligned"}, {"interior", "interior"}});
-    const double w = hi.x() - lo.x(), h = hi.y() - lo.y();
-    // cell_centred: the centres of an nx × ny grid of cells (the paper's 40 × 40 sensors);
-    // node_aligned: nx × ny nodes from wall to wall; interior: the inner nodes of an
-    // (nx+1) × (ny+1)-interval grid (the 29 × 29 sensors of Diff-MAS2D's 30 × 30 grid).
-    for (std::int64_t j = 0; j < ny; ++j)
-      for (std::int64_t i = 0; i < nx; ++i) {
-        double x, y;
-        if (alignment == "cell_centred") {
-          x = lo.x() + (static_cast<double>(i) + 0.5) * w / static_cast<double>(nx);
-          y = lo.y() + (static_cast<double>(j) + 0.5) * h / static_cast<double>(ny);
-        } else if (alignment == "interior") {
-          x = lo.x() + static_cast<double>(i + 1) * w / static_cast<double>(nx + 1);
-          y = lo.y() + static_cast<double>(j + 1) * h / static_cast<double>(ny + 1);
-        } else {
-          x = nx == 1 ? lo.x() + 0.5 * w : lo.x() + static_cast<double>(i) * w / static_cast<double>(nx - 1);
-          y = ny == 1 ? lo.y() + 0.5 * h : lo.y() + static_cast<double>(j) * h / static_cast<double>(ny - 1);
-        }
-        const Vec2 p{x, y};
-        if (protocols::contains(domain, p)) sensors.push_back({p, 0.0});
-      }
-    const auto intervals = [&](std::int64_t n) {
-      return static_cast<double>(alignment == "cell_centred" ? n : alignment == "interior" ? n + 1 : std::max<std::int64_t>(n - 1, 1));
-    };
-    layout.spacing = std::min(w / intervals(nx), h / intervals(ny));
-  } else {
-    s.reject("nx", "'nx' applies to layout grid");
-    s.reject("ny", "'ny' applies to layout grid");
-    s.reject("alignment", "'alignment' applies to layout grid");
-  }
-  if (layout.kind == "random") {
-    const auto count = s.integer("count", 100, 0, 100000000);
-    auto rng = sim::RandomStream::keyed(seed, std::uint64_t{0}, sim::purpose("sensors.layout"));
-    // Rejection sampling in the bounding box keeps the layout uniform in any convex domain.
-    while (static_cast<std::int64_t>(sensors.size()) < count) {
-      const Vec2 p{rng.uniform(lo.x(), hi.x()), rng.uniform(lo.y(), hi.y())};
-      if (protocols::contains(domain, p)) sensors.push_back({p, 0.0});
-    }
-  } else {
-    s.reject("count", "'count' applies to layout random");
-  }
-  if (layout.kind == "file") {
-    std::string file = s.text("file", "");
-    if (file.empty()) {
-      s.error_at("file", "layout file needs 'file: path/to/sensors.csv'");
-    } else {
-      if (std::filesystem::path(file).is_relative()) file = (std::filesystem::path(base_dir) / file).string();
-      std::vector<int> lines;
-      sensors = read_sensor_file(file, s, reader, lines);
-      for (std::size_t k = 0; k < sensors.size(); ++k)
-        if (!protocols::contains(domain, sensors[k].position)) {
-          reader.error(file + ":" + std::to_string(lines[k]) + ":1",
-                       "sensor " + std::to_string(k) + " at " + shown_point(sensors[k].position) +
-                           " lies outside the domain");
-          break;
-        }
-    }
-  } else {
-    s.reject("file", "'file' applies to layout file");
-  }
-  s.finish();
-  if (layout.kind != "grid" && !sensors.empty())
-    layout.spacing = std::sqrt(domain_area / static_cast<double>(sensors.size()));
-  // Every sensor stands for an equal share of Ω unless the file says otherwise.
-  for (auto& d : sensors)
-    if (d.area <= 0.0) d.area = domain_area / static_cast<double>(sensors.size());
-  return sensors;
-}
-
-std::vector<Vec2> read_robots(Section s, const ConvexPolygon& domain, std::uint64_t seed,
-                              agents::MotionParams& motion) {
-  std::vector<Vec2> robots;
-  const std::string layout = s.choice<std::string>(
-      "layout", "grid", {{"grid", "grid"}, {"positions", "positions"}, {"random", "random"}});
-  Vec2 lo = domain.vertices[0], hi = domain.vertices[0];
-  for (const Vec2& v : domain.vertices) {
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
-  if (layout == "grid") {
-    // Cell-centred: 3 × 3 on the unit square gives 1/6, 1/2, 5/6 (the paper's §VI-A start).
-    const auto nx = s.integer("nx", 3, 1, 10000), ny = s.integer("ny", 3, 1, 10000);
-    for (std::int64_t j = 0; j < ny; ++j)
-      for (std::int64_t i = 0; i < nx; ++i)
-        robots.push_back(Vec2{lo.x() + (static_cast<double>(i) + 0.5) * (hi.x() - lo.x()) / static_cast<double>(nx),
-                              lo.y() + (static_cast<double>(j) + 0.5) * (hi.y() - lo.y()) / static_cast<double>(ny)});
-    // The grid spans Ω's bounding box; in a non-rectangular Ω some of it may fall outside.
-    for (std::size_t i = 0; i < robots.size(); ++i)
-      if (!protocols::contains(domain, robots[i])) {
-        s.error_at("layout", "robot " + std::to_string(i) + " of the " + std::to_string(nx) + " x " +
-                                 std::to_string(ny) + " grid, at " + shown_point(robots[i]) +
-                                 ", lies outside the domain (use layout positions or random)");
-        break;
-      }
-  } else {
-    s.reject("nx", "'nx' applies to layout grid");
-    s.reject("ny", "'ny' applies to layout grid");
-  }
-  if (layout == "positions") {
-    if (!s.has("positions")) s.error_at("positions", "layout positions needs 'positions: [[x, y], ...]'");
-    robots = s.points("positions", 1);
-    for (std::size_t i = 0; i < robots.size(); ++i)
-      if (!protocols::contains(domain, robots[i])) {
-        s.error_at("positions", "robot " + std::to_string(i) + " at " + shown_point(robots[i]) + " lies outside the domain");
-        break;
-      }
-  } else {
-    s.reject("positions", "'positions' applies to layout positions");
-  }
-  if (layout == "random") {
-    const auto count = s.integer("count", 9, 1, 10000000);
-    auto rng = sim::RandomStream::keyed(seed, std::uint64_t{0}, sim::purpose("robots.layout"));
-    while (static_cast<std::int64_t>(robots.size()) < count) {
-      const Vec2 p{rng.uniform(lo.x(), hi.x()), rng.uniform(lo.y(), hi.y())};
-      if (protocols::contains(domain, p)) robots.push_back(p);
-    }
-  } else {
-    s.reject("count", "'count' applies to layout random");
-  }
-  motion.k = s.number("k", 3.0, Range::non_negative());
-  motion.k_v = s.number("k_v", 1.0, Range::non_negative());
-  motion.max_speed = s.number("max_speed", 0.0, Range::non_negative());
-  motion.substep_s = s.number("substep", 1e-3, Range::positive());
-  motion.jump_to_target = s.choice<bool>("dynamics", false, {{"second_order", false}, {"discrete_lloyd", true}});
-  s.finish();
-  return robots;
-}
-
 net::RadioParams read_radio(Section s) {
   net::RadioParams r;
   r.max_range = s.number("max_range", r.max_range, Range::positive());
   r.meters_per_unit = s.number("meters_per_unit", r.meters_per_unit, Range::positive());
-  r.latency_s = s.number("latency", r.latency_s, Range::non_negative());
-  r.bitrate_bps = s.number("bitrate", r.bitrate_bps, Range::positive());
-  r.jitter_s = s.number("jitter", r.jitter_s, Range::non_negative());
+  r.latency_s = s.number("latency", r.latency_s, Range::delay());
+  // At least 1 kbit/s: the airtime of the largest message must fit the clock.
+  r.bitrate_bps = s.number("bitrate", r.bitrate_bps, Range{1e3, kMaxMagnitude});
+  r.jitter_s = s.number("jitter", r.jitter_s, Range::delay());
   const std::string level = s.choice<std::string>(
       "level", "airtime", {{"ideal", "ideal"}, {"airtime", "airtime"}, {"collision", "collision"}});
   if (level == "collision") s.error_at("level", "level 'collision' is not available yet (use ideal or airtime)");
@@ -521,8 +310,8 @@ protocols::ProtocolParams read_protocol(Section s) {
                                    {"oracle", ProtocolKind::oracle},
                                    {"fixed_radius", ProtocolKind::fixed_radius},
                                    {"gabriel", ProtocolKind::gabriel}});
-  p.period_s = s.number("period", p.period_s, Range::positive());
-  p.reply_timeout_s = s.number("reply_timeout", p.reply_timeout_s, Range::positive());
+  p.period_s = s.number("period", p.period_s, Range::time());
+  p.reply_timeout_s = s.number("reply_timeout", p.reply_timeout_s, Range::time());
   p.growth = s.choice<protocols::Growth>("growth", p.growth,
                                          {{"to_2d", protocols::Growth::to_2d}, {"double", protocols::Growth::doubling}});
   p.criterion = s.choice<protocols::StopCriterion>(
@@ -546,7 +335,7 @@ agents::BeaconDef read_beacons(Section s) {
                                                {"robots", agents::BeaconSenders::robots},
                                                {"sensors", agents::BeaconSenders::sensors},
                                                {"all", agents::BeaconSenders::all}});
-  b.period_s = s.number("period", b.period_s, Range::positive());
+  b.period_s = s.number("period", b.period_s, Range::time());
   b.range = s.number("range", b.range, Range::positive());
   s.finish();
   return b;
@@ -554,9 +343,9 @@ agents::BeaconDef read_beacons(Section s) {
 
 OutputDef read_output(Section s, double duration_s) {
   OutputDef o;
-  o.sample_period_s = s.number("sample_period", o.sample_period_s, Range::positive());
-  o.trajectory_period_s = s.number("trajectory_period", o.trajectory_period_s, Range::positive());
-  o.snapshots = s.numbers("snapshots", Range{0.0, duration_s > 0 ? duration_s : 1e308});
+  o.sample_period_s = s.number("sample_period", o.sample_period_s, Range::time());
+  o.trajectory_period_s = s.number("trajectory_period", o.trajectory_period_s, Range::time());
+  o.snapshots = s.numbers("snapshots", Range{0.0, duration_s > 0 ? duration_s : kMaxTime_s});
   o.updates = s.boolean("updates", o.updates);
   o.figures = s.boolean("figures", o.figures);
   o.report = s.boolean("report", o.report);
@@ -567,8 +356,16 @@ OutputDef read_output(Section s, double duration_s) {
 }  // namespace
 
 LoadResult load_scenario_text(const std::string& text, const std::string& file_name,
-                              const std::vector<std::string>& overrides, std::optional<std::uint64_t> seed) {
+                              const std::vector<std::string>& overrides, std::optional<std::uint64_t> seed,
+                              const LoadOptions& options) {
   LoadResult result;
+  // The file name reaches summary.json ("source"): JSON text must be UTF-8.
+  if (first_invalid_utf8(file_name) != std::string::npos) {
+    result.diagnostics.push_back({shown_text(file_name) + ":1:1", "the file name is not valid UTF-8"});
+    return result;
+  }
+  result.diagnostics = check_yaml_text(text, file_name);
+  if (!result.diagnostics.empty()) return result;
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -598,7 +395,24 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
   Section top(reader, root, "", "");
   ScenarioDef def;
   def.source_path = file_name;
-  def.name = top.text("name", std::filesystem::path(file_name).stem().string());
+  // limits first: they decide how many nodes the layouts may build.
+  const bool has_limits = top.has("limits");
+  Section limits = top.section("limits");
+  NodeCaps caps;
+  caps.huge = limits.boolean("allow_huge", false) && options.allow_huge;
+  limits.finish();
+  if (!has_limits) reader.resolved().erase("limits");  // summary.json as before the key existed
+  if (caps.huge) {
+    caps.sensors = kMaxSensorsHuge;
+    caps.robots = kMaxRobotsHuge;
+  }
+  caps.build_sensors = options.build_sensors;
+  // The name becomes the run directory runs/<name>-seed<seed>: a file-name-safe token.
+  const std::string stem = std::filesystem::path(file_name).stem().string();
+  def.name = top.text("name", sanitized_name(stem));
+  if (top.has("name") && !valid_name(def.name))
+    top.error_at("name", "'" + shown_text(def.name) + "' is not a valid name (it names the run directory: " +
+                             name_rule() + ")");
   def.seed = static_cast<std::uint64_t>(top.integer("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
   if (seed) {
     def.seed = *seed;
@@ -606,16 +420,19 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
   }
   const std::size_t errors_before_duration = reader.diagnostics().size();
   if (!top.has("duration")) top.error_at("duration", "missing required key 'duration' (seconds of simulated time)");
-  def.duration_s = top.number("duration", 1.0, Range::positive());
+  def.duration_s = top.number("duration", 1.0, Range::time());
   // Without a valid duration, snapshot times are not checked against the 1 s fallback.
   const bool duration_ok = reader.diagnostics().size() == errors_before_duration;
   def.world.seed = def.seed;
   def.world.domain = read_domain(top.section("domain"));
   const std::string base_dir = std::filesystem::path(file_name).parent_path().string();
   SensorLayout layout;
-  def.world.sensors =
-      read_sensors(top.section("sensors"), def.world.domain, def.seed, base_dir, reader, layout, def.world.sensor_noise_sigma);
+  def.world.sensors = read_sensors(top.section("sensors"), def.world.domain, def.seed, base_dir, reader, layout,
+                                   def.world.sensor_noise_sigma, caps);
+  def.sensor_count = layout.count;
   def.sensor_layout = layout.kind;
+  LimitSections at{top.peek("field"),    top.peek("density_scaling"), top.peek("robots"),
+                   top.peek("protocol"), top.peek("beacons"),         top.peek("output")};
   def.world.field = read_field(top.section("field"), def.world.domain);
   if (def.world.field.kind == FieldKind::acoustic && def.world.field.min_distance <= 0.0) {
     // d_min = h/2 by default: half the sensor spacing removes the singularity (SPEC §6.1).
@@ -623,7 +440,7 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
     reader.resolved()[nlohmann::json::json_pointer("/field/min_distance")] = def.world.field.min_distance;
   }
   def.world.scaling = read_scaling(top.section("density_scaling"));
-  def.world.robots = read_robots(top.section("robots"), def.world.domain, def.seed, def.world.motion);
+  def.world.robots = read_robots(top.section("robots"), def.world.domain, def.seed, def.world.motion, caps);
   def.world.radio = read_radio(top.section("radio"));
   def.world.protocol = read_protocol(top.section("protocol"));
   def.world.beacons = read_beacons(top.section("beacons"));
@@ -632,6 +449,8 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
   for (const char* later : {"groups", "faults"})
     top.reject(later, std::string("section '") + later + "' is not supported by this version of masnet");
   top.finish();
+  // What the numbers imply (work, densities) only means something once they are all valid.
+  if (reader.ok()) check_limits(def, layout.count, caps, at);
   if (!reader.ok()) {
     result.diagnostics = reader.diagnostics();
     // Sections are read in dependency order (domain before sensors and robots); report in the
@@ -654,16 +473,14 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
 }
 
 LoadResult load_scenario(const std::string& path, const std::vector<std::string>& overrides,
-                         std::optional<std::uint64_t> seed) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+                         std::optional<std::uint64_t> seed, const LoadOptions& options) {
+  std::string text, problem;
+  if (!read_regular_file(path, kMaxScenarioFileBytes, text, problem)) {
     LoadResult result;
-    result.diagnostics.push_back({path, "cannot read the scenario file"});
+    result.diagnostics.push_back({path + ":1:1", "cannot read the scenario file (" + problem + ")"});
     return result;
   }
-  std::stringstream text;
-  text << in.rdbuf();
-  return load_scenario_text(text.str(), path, overrides, seed);
+  return load_scenario_text(text, path, overrides, seed, options);
 }
 
 }  // namespace masnet::scenarios

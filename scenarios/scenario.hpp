@@ -32,6 +32,8 @@ struct ScenarioDef {
   agents::WorldDef world;
   OutputDef output;
   std::string sensor_layout;  ///< "grid", "random" or "file": said in the report
+  /// The number of sensors, also when LoadOptions::build_sensors left world.sensors empty.
+  std::size_t sensor_count = 0;
   /// Diffusion runs: also run the same scenario and seed with the dispensers off and report both.
   bool baseline = false;
   /// Pollution counts as cleaned when Σ readings falls below this; 0 = 5 % of the peak.
@@ -39,20 +41,33 @@ struct ScenarioDef {
   nlohmann::json resolved;    ///< every key with its value, defaults included
 };
 
+/// How much the loader builds.
+struct LoadOptions {
+  /// Build the sensor list. `masnet validate` only counts the sensors (a 10^4 × 10^4 grid is
+  /// 2.4 GB); a sensor file is read either way, its sensors checked against the domain.
+  bool build_sensors = true;
+  /// Honour `limits.allow_huge`. A fuzzer turns this off so that no input can raise the
+  /// limits of docs/scenario-reference.md.
+  bool allow_huge = true;
+};
+
 struct LoadResult {
   std::optional<ScenarioDef> scenario;  ///< set when there is no diagnostic
   std::vector<Diagnostic> diagnostics;
 };
 
-/// Loads `path`, applying `overrides` ("a.b.c=VALUE", VALUE parsed as YAML) and then the
+/// Loads `path` (a regular file of at most 16 MiB), applying `overrides` ("a.b.c=VALUE", VALUE parsed as YAML) and then the
 /// seed override. Never throws for bad input: problems come back as diagnostics.
 LoadResult load_scenario(const std::string& path, const std::vector<std::string>& overrides,
-                         std::optional<std::uint64_t> seed = std::nullopt);
+                         std::optional<std::uint64_t> seed = std::nullopt, const LoadOptions& options = {});
 
-/// The same from YAML text (tests); `file_name` is used in messages and to resolve
-/// relative paths (sensor files).
+/// The same from YAML text (tests, fuzzing); `file_name` is used in messages and to resolve
+/// relative paths (sensor files). Bounded for any text: with `allow_huge` off, at most 10^7
+/// sensors and 10^6 robots are built and aliases repeat at most 10^5 nodes, so 64 KiB of input
+/// cannot take more than about 300 MB or a second (docs/scenario-reference.md, "Limits").
 LoadResult load_scenario_text(const std::string& text, const std::string& file_name,
                               const std::vector<std::string>& overrides,
-                              std::optional<std::uint64_t> seed = std::nullopt);
+                              std::optional<std::uint64_t> seed = std::nullopt,
+                              const LoadOptions& options = {});
 
 }  // namespace masnet::scenarios

@@ -8,6 +8,7 @@
 #include <ctime>
 #include <deque>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <set>
@@ -21,6 +22,7 @@
 #include <boost/asio/thread_pool.hpp>
 
 #include "scenarios/figures.hpp"
+#include "scenarios/input.hpp"
 #include "scenarios/output_file.hpp"
 #include "scenarios/run.hpp"
 #include "scenarios/run_directory.hpp"
@@ -53,14 +55,6 @@ std::uint64_t fnv1a64(std::string_view text) {
 
 std::string hex16(std::uint64_t h) {
   return fmt::format("{:016x}", h);
-}
-
-std::string read_text(const fs::path& path, bool& ok) {
-  std::ifstream in(path, std::ios::binary);
-  ok = static_cast<bool>(in);
-  std::stringstream s;
-  if (ok) s << in.rdbuf();
-  return s.str();
 }
 
 // A YAML value as JSON: plain scalars become integers, numbers or booleans when they read as
@@ -165,6 +159,8 @@ class SweepParser {
   // One varied key: its values, or nothing (error reported).
   std::optional<std::vector<json>> read_values(const std::string& key, const YAML::Node& node);
   void read_vary_and_zip(const YAML::Node& vary, const YAML::Node& zip);
+  // The number of runs, from the axes' sizes, before anything is expanded.
+  void check_run_count(const YAML::Node& root);
   void probe();
 
   ScenarioReader reader_;
@@ -534,10 +530,33 @@ void SweepParser::read_vary_and_zip(const YAML::Node& vary, const YAML::Node& zi
   }
 }
 
+void SweepParser::check_run_count(const YAML::Node& root) {
+  std::uint64_t runs = def_.seeds.size();
+  std::string factors;
+  bool overflow = false;
+  for (const SweepAxis& axis : def_.axes) {
+    const std::uint64_t n = axis.points.size();
+    if (n != 0 && runs > std::numeric_limits<std::uint64_t>::max() / n) overflow = true;
+    else runs *= n;
+    factors += std::to_string(n) + " " + (axis.name == "variant" ? "variants" : axis.name) + " × ";
+  }
+  if (!overflow && runs <= kMaxSweepRuns) return;
+  const YAML::Node vary = child(root, "vary");
+  const YAML::Node seeds = child(root, "seeds");
+  const YAML::Node at = vary.IsDefined() ? vary : seeds.IsDefined() ? seeds : root;
+  error(at, "vary", "the sweep would have " + (overflow ? std::string("more than 1.8e+19") : std::to_string(runs)) +
+                        " runs (" + factors + std::to_string(def_.seeds.size()) +
+                        " seeds), more than the limit of " + std::to_string(kMaxSweepRuns) +
+                        " (docs/sweeps.md, \"Limits\")");
+}
+
 // Loads the base once alone (its own errors are the sweep's) and once per variant with every
 // override (only unknown keys are the sweep's: bad values just make those runs fail).
 void SweepParser::probe() {
-  const LoadResult alone = load_scenario_text(def_.base_text, def_.base_path, {});
+  // Probes check keys and values, not layouts: the sensors are counted, not built.
+  LoadOptions options;
+  options.build_sensors = false;
+  const LoadResult alone = load_scenario_text(def_.base_text, def_.base_path, {}, std::nullopt, options);
   for (const Diagnostic& d : alone.diagnostics)
     reader_.error(d.location, "in the base scenario: " + d.message);
   if (!alone.diagnostics.empty()) return;
@@ -554,7 +573,8 @@ void SweepParser::probe() {
       for (const auto& o : point.overrides)
         overrides.push_back(o.key + "=" + o.value.dump());
     }
-    const LoadResult loaded = load_scenario_text(def_.base_text, def_.base_path, overrides);
+    const LoadResult loaded =
+        load_scenario_text(def_.base_text, def_.base_path, overrides, std::nullopt, options);
     for (const Diagnostic& d : loaded.diagnostics) {
       if (d.location.rfind("--set ", 0) != 0) continue;
       const bool structural = d.message.rfind("unknown key", 0) == 0 ||
@@ -573,6 +593,9 @@ void SweepParser::probe() {
 
 SweepLoad SweepParser::parse(const std::string& text) {
   SweepLoad result;
+  // UTF-8, one document, no tags, bounded aliases: the same checks as a scenario's text.
+  result.diagnostics = check_yaml_text(text, file_);
+  if (!result.diagnostics.empty()) return result;
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -598,10 +621,16 @@ SweepLoad SweepParser::parse(const std::string& text) {
           "sweep file)");
   } else {
     const fs::path path = (fs::path(file_).parent_path() / base.Scalar()).lexically_normal();
-    bool ok = false;
-    def_.base_text = read_text(path, ok);
+    std::string problem;
     def_.base_path = path.string();
-    if (!ok) error(base, "base", "base: cannot read the scenario '" + path.string() + "'");
+    if (!read_regular_file(def_.base_path, kMaxScenarioFileBytes, def_.base_text, problem)) {
+      error(base, "base", "base: cannot read the scenario '" + shown_text(def_.base_path) + "' (" + problem + ")");
+    } else if (auto problems = check_yaml_text(def_.base_text, def_.base_path); !problems.empty()) {
+      // Checked before the canonical form below walks it (an alias bomb would).
+      for (const Diagnostic& d : problems)
+        reader_.error(d.location, "in the base scenario: " + d.message);
+      def_.base_text.clear();
+    }
     std::string canonical = def_.base_text;
     try {
       YAML::Emitter out;
@@ -622,7 +651,7 @@ SweepLoad SweepParser::parse(const std::string& text) {
   }
 
   Section output(reader_, child(root, "output"), "output", "/output");
-  def_.output_dir = output.text("dir", "runs/sweep-" + fs::path(file_).stem().string());
+  def_.output_dir = output.text("dir", "runs/sweep-" + sanitized_name(fs::path(file_).stem().string()));
   def_.keep_runs = output.boolean("keep_runs", false);
   output.finish();
 
@@ -642,6 +671,7 @@ SweepLoad SweepParser::parse(const std::string& text) {
     if (std::find(unique.begin(), unique.end(), p) == unique.end()) unique.push_back(p);
   def_.parameters = unique;
 
+  check_run_count(root);
   if (reader_.ok() && !def_.base_text.empty()) probe();
   if (!reader_.ok()) {
     result.diagnostics = reader_.diagnostics();
@@ -744,11 +774,10 @@ SweepLoad load_sweep_text(const std::string& text, const std::string& file_name)
 }
 
 SweepLoad load_sweep(const std::string& path) {
-  bool ok = false;
-  const std::string text = read_text(path, ok);
-  if (!ok) {
+  std::string text, problem;
+  if (!read_regular_file(path, kMaxScenarioFileBytes, text, problem)) {
     SweepLoad result;
-    result.diagnostics.push_back({path, "cannot read the sweep file"});
+    result.diagnostics.push_back({path + ":1:1", "cannot read the sweep file (" + problem + ")"});
     return result;
   }
   return load_sweep_text(text, path);

@@ -22,6 +22,9 @@
 
 namespace masnet::scenarios {
 
+/// The most runs a sweep may expand to (docs/sweeps.md, "Limits"), checked before expanding.
+inline constexpr std::uint64_t kMaxSweepRuns = 100'000;
+
 /// One override: a dotted scenario key and its value (given to the loader as "key=VALUE").
 struct SweepOverride {
   std::string key;

@@ -89,8 +89,17 @@ const std::vector<Case> kCases = {
      {"robot_outside_domain.yaml:5:5: robots.positions: robot 1 at (1.5, 0.5) lies outside the "
       "domain"}},
     {"robot_grid_outside_domain.yaml",
+     // Every robot outside is reported (up to ten).
      {"robot_grid_outside_domain.yaml:6:11: robots.layout: robot 2 of the 3 x 3 grid, at "
-      "(0.833333, 0.166667), lies outside the domain (use layout positions or random)"}},
+      "(0.833333, 0.166667), lies outside the domain (use layout positions or random)",
+      "robot_grid_outside_domain.yaml:6:11: robots.layout: robot 5 of the 3 x 3 grid, at "
+      "(0.833333, 0.5), lies outside the domain (use layout positions or random)",
+      "robot_grid_outside_domain.yaml:6:11: robots.layout: robot 6 of the 3 x 3 grid, at "
+      "(0.166667, 0.833333), lies outside the domain (use layout positions or random)",
+      "robot_grid_outside_domain.yaml:6:11: robots.layout: robot 7 of the 3 x 3 grid, at "
+      "(0.5, 0.833333), lies outside the domain (use layout positions or random)",
+      "robot_grid_outside_domain.yaml:6:11: robots.layout: robot 8 of the 3 x 3 grid, at "
+      "(0.833333, 0.833333), lies outside the domain (use layout positions or random)"}},
     {"positions_missing.yaml",
      {"positions_missing.yaml:3:3: robots.positions: layout positions needs 'positions: [[x, "
       "y], ...]'"}},
@@ -134,7 +143,70 @@ const std::vector<Case> kCases = {
      {"sensors_outside.csv:4:1: sensor 2 at (0.25, 1.25) lies outside the domain"}},
     {"sensor_csv_missing.yaml",
      {"sensor_csv_missing.yaml:4:9: sensors.file: cannot read sensor file "
-      "'no_such_sensors.csv'"}},
+      "'no_such_sensors.csv' (No such file or directory)"}},
+    // Hostile input: nulls, bytes, names, YAML features, and values whose consequences would
+    // not fit (docs/scenario-reference.md, "Limits").
+    {"null_duration.yaml",
+     {"null_duration.yaml:2:1: duration: expected a number, got nothing (null)"}},
+    {"null_values.yaml",
+     {"null_values.yaml:4:3: protocol.kind: expected one of none, radius_doubling, oracle, fixed_radius, gabriel, got nothing (null)",
+      "null_values.yaml:5:1: radio: expected a mapping of keys, got nothing (null)",
+      "null_values.yaml:8:3: robots.positions: expected a list of points [[x, y], ...], got nothing (null)",
+      "null_values.yaml:10:3: output.snapshots: expected a list of numbers, got nothing (null)"}},
+    {"invalid_utf8.yaml",
+     {"invalid_utf8.yaml:3:10: the text is not valid UTF-8 (byte 0xB1 here); save the file as UTF-8"}},
+    {"name_with_path.yaml",
+     {"name_with_path.yaml:3:7: name: '../../x' is not a valid name (it names the run directory: use 1 to 64 of the characters A-Z a-z 0-9 . _ -, not starting with '.' or '-')"}},
+    {"name_with_control_characters.yaml",
+     {"name_with_control_characters.yaml:3:7: name: 'a\\x09b\\x1B[31m' is not a valid name (it names the run directory: use 1 to 64 of the characters A-Z a-z 0-9 . _ -, not starting with '.' or '-')"}},
+    {"second_document.yaml",
+     {"second_document.yaml:2:1: a second YAML document starts here (the file must hold a single document; remove the '---' and what follows)"}},
+    {"yaml_tags.yaml",
+     {"yaml_tags.yaml:1:11: YAML tags are not supported (got '!!str'); write the value alone, quoted if it must stay a text",
+      "yaml_tags.yaml:3:10: YAML tags are not supported (got '!foo'); write the value alone, quoted if it must stay a text"}},
+    {"alias_bomb.yaml",
+     {"alias_bomb.yaml:7:45: the aliases (*name) repeat more than 100000 nodes in all (docs/scenario-reference.md, \"Limits\")"}},
+    {"long_value.yaml",
+     {"long_value.yaml:4:10: radio.level: expected one of ideal, airtime, collision, got 'abababababababababababababababababababababababababababababababababababababababab… (1000000 bytes in all)'"}},
+    {"period_below_resolution.yaml",
+     {"period_below_resolution.yaml:4:11: protocol.period: must be >= 1e-09 (1 ns, the clock's resolution) (got 1e-300)",
+      "period_below_resolution.yaml:6:18: output.sample_period: must be >= 1e-09 (1 ns, the clock's resolution) (got 1e-12)"}},
+    {"periodic_work_budget.yaml",
+     {"periodic_work_budget.yaml:5:11: beacons.period: the run would take about 9e+10 periodic steps (protocol updates 9e+03, beacons 9e+10, trajectory rows 4.5e+03), more than the limit of 1e+09; use a longer period or a shorter duration, or set limits.allow_huge: true"}},
+    {"duration_too_long.yaml",
+     {"duration_too_long.yaml:2:11: duration: must be <= 1e+09 (got 1e10)"}},
+    {"too_many_samples.yaml",
+     {"too_many_samples.yaml:4:18: output.sample_period: the run would write about 1e+08 timeseries rows, more than the limit of 1e+07; use a longer sample_period, or set limits.allow_huge: true"}},
+    {"velocity_too_large.yaml",
+     {"velocity_too_large.yaml:6:37: field.bumps[0].velocity: coordinates must be within ±1e+12, got [1e308, 1e308]"}},
+    {"number_too_large.yaml",
+     {"number_too_large.yaml:3:14: radio.max_range: must be <= 1e+12 (got 1e300)"}},
+    {"acoustic_density_overflow.yaml",
+     {"acoustic_density_overflow.yaml:5:10: field.alpha: the density could reach 1e520 (amplitude over min_distance^alpha for acoustic fields), past the limit of 1e100; use a smaller amplitude or alpha, or a larger min_distance"}},
+    {"scaled_density_overflow.yaml",
+     {"scaled_density_overflow.yaml:8:10: density_scaling.gamma: the scaled density could reach 1e120 (the peak density 1e6 to the power gamma), past the limit of 1e100; use a smaller gamma"}},
+    {"sensor_grid_over_limit.yaml",
+     {"sensor_grid_over_limit.yaml:5:7: sensors.ny: a 10000 x 10000 grid has more than 10000000 sensors (limits.allow_huge: true allows up to 100000000)"}},
+    {"robot_grid_over_limit.yaml",
+     {"robot_grid_over_limit.yaml:5:7: robots.ny: a 2000 x 1000 grid has more than 1000000 robots (limits.allow_huge: true allows up to 10000000)"}},
+    {"many_robots_outside_domain.yaml",
+     {"many_robots_outside_domain.yaml:5:14: robots.positions: robot 1 at (1.5, 0.5) lies outside the domain",
+      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 2 at (2.5, 0.5) lies outside the domain",
+      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 3 at (3.5, 0.5) lies outside the domain",
+      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 4 at (4.5, 0.5) lies outside the domain",
+      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 5 at (5.5, 0.5) lies outside the domain",
+      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 6 at (6.5, 0.5) lies outside the domain",
+      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 7 at (7.5, 0.5) lies outside the domain",
+      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 8 at (8.5, 0.5) lies outside the domain",
+      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 9 at (9.5, 0.5) lies outside the domain",
+      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 10 at (10.5, 0.5) lies outside the domain",
+      "many_robots_outside_domain.yaml:5:14: ... and 3 more robots outside the domain"}},
+    {"random_layout_sliver.yaml",
+     {"random_layout_sliver.yaml:7:10: sensors.count: layout random would draw about 2e+08 points (the domain "
+      "fills 0.05% of its bounding box), more than the limit of 2e+07; use fewer nodes, or set "
+      "limits.allow_huge: true"}},
+    {"bad_limits.yaml",
+     {"bad_limits.yaml:3:15: limits.allow_huge: expected true or false, got 'yes please'"}},
     // Every problem is reported, in the order of the file.
     {"several_errors.yaml",
      {"several_errors.yaml:5:14: radio.max_range: must be > 0 (got -1)",
@@ -459,5 +531,12 @@ TEST_CASE("a sensor grid too large to hold is refused before it is built", "[sce
                                  "inline.yaml", {})
                   .diagnostics) ==
         std::vector<std::string>{"inline.yaml:4:7: sensors.ny: a 100000 x 20000 grid has more "
-                                 "than 100000000 sensors"});
+                                 "than 10000000 sensors (limits.allow_huge: true allows up to "
+                                 "100000000)"});
+  CHECK(texts(load_scenario_text("duration: 1\nsensors:\n  nx: 100000\n  ny: 20000\nlimits: "
+                                 "{allow_huge: true}\n",
+                                 "inline.yaml", {})
+                  .diagnostics) ==
+        std::vector<std::string>{
+            "inline.yaml:4:7: sensors.ny: a 100000 x 20000 grid has more than 100000000 sensors"});
 }

@@ -295,7 +295,7 @@ TEST_CASE("A bad sweep file gets file:line:col errors", "[scenarios]") {
   CHECK(errors("base: ../paper/missing.yaml\n") ==
         std::vector<std::string>{f + ":1:7: base: cannot read the scenario '" +
                                  (fs::path(kSource) / "scenarios/paper/missing.yaml").string() +
-                                 "'"});
+                                 "' (No such file or directory)"});
   // A key the scenario does not have is the sweep file's error, located in the sweep file.
   CHECK(
       errors("base: ../paper/acoustic_tracking.yaml\nvary:\n  protocol.knd: [oracle, gabriel]\n") ==
