@@ -27,6 +27,11 @@ namespace {
 constexpr int kBadInput = 2;
 constexpr int kInternalError = 1;
 
+void print_warnings(const std::vector<Diagnostic>& warnings) {
+  for (const Diagnostic& w : warnings)
+    std::fprintf(stderr, "%s: warning: %s\n", w.location.c_str(), w.message.c_str());
+}
+
 int print_diagnostics(const std::vector<Diagnostic>& diagnostics) {
   for (const Diagnostic& d : diagnostics)
     std::fprintf(stderr, "%s\n", d.text().c_str());
@@ -69,6 +74,7 @@ int command_run(const RunArgs& args) {
   if (args.baseline) sets.push_back("control.baseline=true");  // same as the scenario key
   LoadResult loaded = load_scenario(args.scenario, sets, seed);
   if (!loaded.scenario) return print_diagnostics(loaded.diagnostics);
+  print_warnings(loaded.warnings);
   const ScenarioDef& def = *loaded.scenario;
   const std::string out =
       args.out.empty() ? "runs/" + def.name + "-seed" + std::to_string(def.seed) : args.out;
@@ -180,6 +186,7 @@ int command_validate(const std::string& scenario, const std::vector<std::string>
   options.build_sensors = false;
   LoadResult loaded = load_scenario(scenario, sets, std::nullopt, options);
   if (!loaded.scenario) return print_diagnostics(loaded.diagnostics);
+  print_warnings(loaded.warnings);
   const ScenarioDef& def = *loaded.scenario;
   std::printf("%s: ok (%zu sensors, %zu robots, %.3f s)\n", scenario.c_str(), def.sensor_count,
               def.world.robots.size(), def.duration_s);

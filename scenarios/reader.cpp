@@ -27,6 +27,26 @@ std::string ScenarioReader::location(const YAML::Node& node, const std::string& 
   return file_name_ + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
 }
 
+void ScenarioReader::warning(std::string location, std::string message) {
+  warnings_.push_back({std::move(location), std::move(message)});
+}
+
+void ScenarioReader::note_known(const std::string& path) {
+  std::string generic;
+  generic.reserve(path.size());
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    generic.push_back(path[i]);
+    if (path[i] != '[') continue;
+    while (i + 1 < path.size() && path[i + 1] != ']') ++i;  // drop the index
+  }
+  known_paths_.insert(std::move(generic));
+}
+
+void Section::note(std::string_view key) {
+  known_.emplace(key);
+  reader_->note_known(child_path(key));
+}
+
 void ScenarioReader::error(std::string location, std::string message) {
   diagnostics_.push_back({std::move(location), std::move(message)});
 }
@@ -160,6 +180,10 @@ void Section::error_at(std::string_view key, const std::string& message) {
   reader_->error(where(key), child_path(key) + ": " + message);
 }
 
+void Section::warn_at(std::string_view key, const std::string& message) {
+  reader_->warning(where(key), child_path(key) + ": " + message);
+}
+
 void Section::resolve(std::string_view key, nlohmann::json value) {
   reader_->resolved()[nlohmann::json::json_pointer(pointer_ + "/" + std::string(key))] = std::move(value);
 }
@@ -184,7 +208,7 @@ std::string shown(const YAML::Node& node) {
 }  // namespace
 
 double Section::number(std::string_view key, double fallback, Range range) {
-  known_.emplace(key);
+  note(key);
   const YAML::Node value = child(key);
   double result = fallback;
   if (value.IsDefined()) {
@@ -203,7 +227,7 @@ double Section::number(std::string_view key, double fallback, Range range) {
 
 std::int64_t Section::integer(std::string_view key, std::int64_t fallback, std::int64_t lo,
                               std::int64_t hi) {
-  known_.emplace(key);
+  note(key);
   const YAML::Node value = child(key);
   std::int64_t result = fallback;
   if (value.IsDefined()) {
@@ -222,7 +246,7 @@ std::int64_t Section::integer(std::string_view key, std::int64_t fallback, std::
 }
 
 bool Section::boolean(std::string_view key, bool fallback) {
-  known_.emplace(key);
+  note(key);
   const YAML::Node value = child(key);
   bool result = fallback;
   if (value.IsDefined()) {
@@ -237,7 +261,7 @@ bool Section::boolean(std::string_view key, bool fallback) {
 }
 
 std::string Section::text(std::string_view key, std::string fallback) {
-  known_.emplace(key);
+  note(key);
   const YAML::Node value = child(key);
   std::string result = std::move(fallback);
   if (value.IsDefined()) {
@@ -252,7 +276,7 @@ std::string Section::text(std::string_view key, std::string fallback) {
 
 std::string Section::choose(std::string_view key, const std::vector<std::string>& names,
                             const std::string& fallback) {
-  known_.emplace(key);
+  note(key);
   const YAML::Node value = child(key);
   std::string result = fallback;
   if (value.IsDefined()) {
@@ -299,7 +323,7 @@ std::string point_problem(const YAML::Node& node, Vec2& out) {
 }  // namespace
 
 Vec2 Section::point(std::string_view key, Vec2 fallback) {
-  known_.emplace(key);
+  note(key);
   const YAML::Node value = child(key);
   Vec2 result = fallback;
   if (value.IsDefined()) {
@@ -314,7 +338,7 @@ Vec2 Section::point(std::string_view key, Vec2 fallback) {
 }
 
 std::vector<Vec2> Section::points(std::string_view key, std::size_t min_count) {
-  known_.emplace(key);
+  note(key);
   const YAML::Node value = child(key);
   std::vector<Vec2> result;
   if (value.IsDefined()) {
@@ -342,7 +366,7 @@ std::vector<Vec2> Section::points(std::string_view key, std::size_t min_count) {
 }
 
 std::vector<double> Section::numbers(std::string_view key, Range range) {
-  known_.emplace(key);
+  note(key);
   const YAML::Node value = child(key);
   std::vector<double> result;
   if (value.IsDefined()) {
@@ -369,7 +393,7 @@ std::vector<double> Section::numbers(std::string_view key, Range range) {
 }
 
 Section Section::section(std::string_view key) {
-  known_.emplace(key);
+  note(key);
   YAML::Node value = child(key);
   const std::string path = child_path(key);
   const std::string pointer = pointer_ + "/" + std::string(key);
@@ -382,7 +406,7 @@ Section Section::section(std::string_view key) {
 }
 
 std::vector<Section> Section::sections(std::string_view key) {
-  known_.emplace(key);
+  note(key);
   const YAML::Node value = child(key);
   std::vector<Section> result;
   const std::string pointer = pointer_ + "/" + std::string(key);
@@ -407,7 +431,7 @@ std::vector<Section> Section::sections(std::string_view key) {
 }
 
 void Section::reject(std::string_view key, const std::string& why) {
-  known_.emplace(key);
+  note(key);
   if (has(key)) error_at(key, why);
 }
 

@@ -40,14 +40,25 @@ class ScenarioReader {
   std::string location(const YAML::Node& node, const std::string& path) const;
   void error(std::string location, std::string message);
 
+  /// A problem that does not stop the run (a key that does not apply here).
+  void warning(std::string location, std::string message);
+
   const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
+  const std::vector<Diagnostic>& warnings() const { return warnings_; }
   bool ok() const { return diagnostics_.empty(); }
   nlohmann::json& resolved() { return resolved_; }
+
+  /// Records that the loader knows the key at dotted `path` (read, or rejected for this
+  /// scenario's kinds); list indices become "[]": "field.targets[].start".
+  void note_known(const std::string& path);
+  /// Every key path noted so far: what the scenario reference must document.
+  const std::set<std::string>& known_paths() const { return known_paths_; }
 
  private:
   std::string file_name_;
   std::vector<std::pair<std::string, std::string>> overrides_;
-  std::vector<Diagnostic> diagnostics_;
+  std::vector<Diagnostic> diagnostics_, warnings_;
+  std::set<std::string> known_paths_;
   nlohmann::json resolved_ = nlohmann::json::object();
 };
 
@@ -105,6 +116,8 @@ class Section {
   std::string where(std::string_view key) const;
   std::string where() const;
   void error_at(std::string_view key, const std::string& message);
+  /// A warning at `key`'s value (the run goes on).
+  void warn_at(std::string_view key, const std::string& message);
 
   double number(std::string_view key, double fallback, Range range = {});
   std::int64_t integer(std::string_view key, std::int64_t fallback, std::int64_t lo,
@@ -130,6 +143,8 @@ class Section {
   Section section(std::string_view key);
   /// A list of mappings.
   std::vector<Section> sections(std::string_view key);
+  /// Marks `key` as known without reading it (read only in some cases, e.g. an alias).
+  void mark_known(std::string_view key) { note(key); }
   /// Marks `key` as known but reports it if present (it does not apply here).
   void reject(std::string_view key, const std::string& why);
   /// Reports every key that no accessor asked for.
@@ -158,6 +173,7 @@ class Section {
   std::string path_;     // dotted, for messages: "field.targets[1]"
   std::string pointer_;  // JSON pointer into the resolved scenario: "/field/targets/1"
   std::set<std::string, std::less<>> known_;
+  void note(std::string_view key);
 };
 
 /// Levenshtein distance, for "did you mean" suggestions.

@@ -124,10 +124,12 @@ agents::PathDef read_path(Section& s) {
     path.speed = s.number("speed", 0.1, Range::non_negative());
     path.loop = s.boolean("loop", false);
     s.reject("start", "give either 'start' (with 'velocity') or 'waypoints', not both");
+    s.reject("center", "give either 'center' (with 'velocity') or 'waypoints', not both");
     s.reject("velocity", "'velocity' goes with 'start'; waypoints move at 'speed'");
   } else {
     if (!s.has("start") && !s.has("center")) s.error_at("start", "missing 'start: [x, y]' (or 'waypoints')");
     if (s.has("center")) s.reject("start", "give either 'start' or 'center' (the same thing), not both");
+    s.mark_known("center");  // `center` is the same key as `start`, for bumps
     path.start = s.has("center") ? s.point("center", Vec2{0.5, 0.5}) : s.point("start", Vec2{0.5, 0.5});
     path.velocity = s.point("velocity", Vec2{0, 0});
     s.reject("speed", "'speed' goes with 'waypoints'");
@@ -191,6 +193,7 @@ agents::FieldDef read_field(Section s, const ConvexPolygon& domain) {
     p.cells = static_cast<int>(d.integer("cells", p.cells, 2, 4096));
     p.cells_y = static_cast<int>(d.integer("cells_y", 0, 0, 4096));
     p.dt_s = d.number("dt", p.dt_s, Range::time());
+    d.mark_known("clip");  // absent: the mode's default (docs/field-models.md)
     if (d.has("clip")) p.clip_sprays_at_zero = d.boolean("clip", false);
     // The PDE lives on a rectangle: Ω must be one, and gives the grid its extent.
     Vec2 lo = domain.vertices[0], hi = domain.vertices[0];
@@ -301,6 +304,17 @@ net::RadioParams read_radio(Section s) {
   return r;
 }
 
+const char* protocol_kind_name(protocols::ProtocolKind kind) {
+  switch (kind) {
+    case protocols::ProtocolKind::none: return "none";
+    case protocols::ProtocolKind::radius_doubling: return "radius_doubling";
+    case protocols::ProtocolKind::oracle: return "oracle";
+    case protocols::ProtocolKind::fixed_radius: return "fixed_radius";
+    case protocols::ProtocolKind::gabriel: return "gabriel";
+  }
+  return "?";
+}
+
 protocols::ProtocolParams read_protocol(Section s) {
   using protocols::ProtocolKind;
   protocols::ProtocolParams p;
@@ -324,6 +338,21 @@ protocols::ProtocolParams read_protocol(Section s) {
   p.decay.min = d.number("min", p.decay.min, Range::positive());
   d.finish();
   p.fixed_radius = s.number("radius", p.fixed_radius, Range::positive());
+  // A knob of another kind is legal (a sweep varies the kind under a fixed set of knobs) but
+  // unused: say so, so that nobody believes `growth` changed an oracle run.
+  using K = ProtocolKind;
+  const auto applies = [&](std::string_view key, std::initializer_list<K> kinds, const char* which) {
+    if (!s.has(key) || std::find(kinds.begin(), kinds.end(), p.kind) != kinds.end()) return;
+    s.warn_at(key, std::string("applies to protocol kind ") + which + ", not " +
+                       std::string(protocol_kind_name(p.kind)) + ": it is ignored");
+  };
+  applies("period", {K::radius_doubling, K::oracle, K::fixed_radius, K::gabriel}, "radius_doubling, oracle, "
+          "fixed_radius and gabriel");
+  applies("reply_timeout", {K::radius_doubling, K::fixed_radius, K::gabriel},
+          "radius_doubling, fixed_radius and gabriel");
+  for (const char* key : {"growth", "criterion", "shrink_on_stop", "decay"})
+    applies(key, {K::radius_doubling}, "radius_doubling");
+  applies("radius", {K::fixed_radius}, "fixed_radius");
   s.finish();
   return p;
 }
@@ -452,6 +481,7 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
   // What the numbers imply (work, densities) only means something once they are all valid.
   if (reader.ok()) check_limits(def, layout.count, caps, at);
   if (!reader.ok()) {
+    result.known_keys = reader.known_paths();
     result.diagnostics = reader.diagnostics();
     // Sections are read in dependency order (domain before sensors and robots); report in the
     // order of the file, then --set and sensor-file problems in the order they were found.
@@ -469,6 +499,8 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
   }
   def.resolved = reader.resolved();
   result.scenario = std::move(def);
+  result.warnings = reader.warnings();
+  result.known_keys = reader.known_paths();
   return result;
 }
 

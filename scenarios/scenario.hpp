@@ -5,6 +5,7 @@
 // documented in docs/scenario-reference.md.
 #include <cstdint>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,11 @@ struct LoadOptions {
 struct LoadResult {
   std::optional<ScenarioDef> scenario;  ///< set when there is no diagnostic
   std::vector<Diagnostic> diagnostics;
+  /// Problems that do not stop the run (a protocol knob of another kind), located.
+  std::vector<Diagnostic> warnings;
+  /// The dotted path of every key the loader knows for this scenario's kinds ("[]" for list
+  /// items): what docs/scenario-reference.md must document.
+  std::set<std::string> known_keys;
 };
 
 /// Loads `path` (a regular file of at most 16 MiB), applying `overrides` ("a.b.c=VALUE", VALUE parsed as YAML) and then the
