@@ -159,7 +159,20 @@ class Radio {
   /// Airtime of a frame of `bytes`.
   sim::Duration airtime(std::uint32_t bytes) const;
 
+  /// A hash of the radio's outcomes so far: every transmission in send order (time, sender,
+  /// addressee, type, bytes, receptions, losses), every refusal and every frame that found its
+  /// receiver dead, then every node's counters, overhearing, energy and death, in id order.
+  /// The simulator's fingerprint sees only frames handed to a listener; this one also sees
+  /// what nobody handled (docs/radio-and-energy.md). The same with or without the second thread.
+  sim::Fingerprint traffic_fingerprint();
+
  private:
+  static constexpr std::uint32_t kNoHotIndex = 0xFFFFFFFFu;
+  // Set in the top bits of traffic words that are not a transmission's (never a time, id pair
+  // or sequence number of a real run).
+  static constexpr std::uint64_t kRefusedMark = std::uint64_t{0xA5} << 56;
+  static constexpr std::uint64_t kUndeliveredMark = std::uint64_t{0x5A} << 56;
+
   // Cold per-node state: what only batteries, loss, jitter, airtime queues and reports need.
   // What every transmission reads and writes of its sender lives apart in dense arrays by node
   // id (`senders_`, `hot_`, `positions_`): a burst of replies from neighbouring sensors walks
@@ -249,6 +262,8 @@ class Radio {
   double idle_j(const Node& node) const;
   void schedule_depletion(NodeId id);
   void kill(NodeId id);
+  /// A send refused for an empty battery, into the traffic fingerprint.
+  void mix_refusal(NodeId source);
   void hand_over(const Frame& frame, NodeId receiver);
   /// The batch that delivers at `arrival` (see `open_batch_`), scheduled if new.
   Batch& batch_for(sim::Time arrival);
@@ -295,7 +310,9 @@ class Radio {
   // jobs gather in `jobs_filling_` and are handed over a few hundred at a time, the thread books
   // them while this one goes on, and every reader of the difference words or of
   // total_heard_bytes_ waits for it first (drain_overhearing). Only that thread writes
-  // heard_diff_ while it runs.
+  // heard_diff_ while it runs. Either side waits by spinning a bounded while (none when the
+  // process has a single processor), then sleeping on the hand-over word
+  // (docs/decisions/0008-overhearing-thread.md).
   struct OverhearingJob {
     double cx = 0.0, cy = 0.0, range = 0.0;
     std::uint64_t booking = 0;  // packed heard bytes + one overheard frame
@@ -303,15 +320,29 @@ class Radio {
   };
   /// Books `job`; returns its static hearers.
   std::uint64_t book_overhearing(const OverhearingJob& job) const;
+  void start_overhearing_thread();
+  /// Returns once the thread has booked the last hand-over.
+  void wait_until_worker_idle() const;
   /// Hands the gathered jobs to the thread (waiting until it is done with the last ones).
   void hand_over_jobs() const;
   void overhearing_worker();
+  static void pause_briefly() {
+#if defined(__SSE2__)
+    _mm_pause();
+#endif
+  }
   /// Hands over what is gathered, waits until the thread has booked it, adds its heard bytes.
   void drain_overhearing() const;
   static constexpr std::size_t kJobsPerHandOver = 512;
+  /// Pauses either side spins before it sleeps (with two processors or more).
+  static constexpr std::uint32_t kSpinLimit = 20000;
+  // The hand-over word: idle (jobs_handed_ is this thread's), handed (the other thread's), handed
+  // and awaited (this thread sleeps until it is done), stop.
+  static constexpr std::uint32_t kIdle = 0, kHanded = 1, kStop = 2, kHandedAwaited = 3;
   mutable std::vector<OverhearingJob> jobs_filling_, jobs_handed_;
-  alignas(64) mutable std::atomic<std::uint32_t> jobs_ready_{0};  // 0 idle, 1 jobs_handed_ is the thread's, 2 stop
-  mutable std::uint64_t worker_heard_bytes_ = 0;                   // the thread's, until drained
+  alignas(64) mutable std::atomic<std::uint32_t> hand_over_state_{kIdle};
+  mutable std::uint64_t worker_heard_bytes_ = 0;  // the thread's, until drained
+  std::uint32_t spin_limit_ = 0;
   std::thread overhearing_thread_;
 
   std::vector<NodeId> static_ids_, mobile_ids_;
@@ -344,6 +375,7 @@ class Radio {
   std::deque<Jittered> jittered_;  // deque: a frame stays put while handlers send new ones
   std::vector<std::uint32_t> free_jittered_;
   std::vector<NodeId> scratch_receivers_;
+  sim::Fingerprint traffic_;  // the per-transmission part of traffic_fingerprint()
 };
 
 template <class Visit>

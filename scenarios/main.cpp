@@ -1,9 +1,10 @@
 // The `masnet` command line (SPEC §7). Exit codes: 0 success, 2 bad input, 1 internal error.
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <optional>
-#include <thread>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -14,6 +15,7 @@
 #include "scenarios/run.hpp"
 #include "scenarios/scenario.hpp"
 #include "scenarios/sweep_command.hpp"
+#include "sim/cpus.hpp"
 
 using namespace masnet::scenarios;
 
@@ -38,6 +40,15 @@ struct RunArgs {
   bool baseline = false;
 };
 
+/// MASNET_OVERHEARING_THREAD=0 or 1 forces the radio's second thread off or on, to compare
+/// the two (docs/performance.md); otherwise it runs when two processors are allowed.
+bool overhearing_thread_wanted() {
+  const char* forced = std::getenv("MASNET_OVERHEARING_THREAD");
+  if (forced != nullptr && (std::strcmp(forced, "0") == 0 || std::strcmp(forced, "1") == 0))
+    return forced[0] == '1';
+  return masnet::sim::allowed_cpu_count() >= 2;
+}
+
 int command_run(const RunArgs& args) {
   std::optional<std::uint64_t> seed;
   if (args.seed >= 0) seed = static_cast<std::uint64_t>(args.seed);
@@ -54,9 +65,10 @@ int command_run(const RunArgs& args) {
     return kBadInput;
   }
   // A lone run may use a second core for the radio's overhearing bookkeeping (the same results;
-  // sweeps keep their cores for whole runs).
+  // sweeps keep their cores for whole runs) when the process may run on two processors: pinned
+  // to one (taskset, a cpuset), the two threads would only take turns.
   ScenarioDef run_def = def;
-  run_def.world.radio.overhearing_thread = std::thread::hardware_concurrency() >= 2;
+  run_def.world.radio.overhearing_thread = overhearing_thread_wanted();
   Run run(run_def);
   {
     ProgressBar bar(def.duration_s, !args.quiet && ProgressBar::stderr_is_terminal());
@@ -67,9 +79,10 @@ int command_run(const RunArgs& args) {
     write_sensors_csv(std::filesystem::path(dir) / "sensors.csv", def.world.sensors);
   });
   if (!args.quiet) {
-    std::printf("%s: %.3f s simulated in %.3f s wall, %llu events, fingerprint %s\n",
+    std::printf("%s: %.3f s simulated in %.3f s wall, %llu events, fingerprint %s, traffic %s\n",
                 def.name.c_str(), def.duration_s, run.wall_time_s(),
-                static_cast<unsigned long long>(run.events()), run.fingerprint().c_str());
+                static_cast<unsigned long long>(run.events()), run.fingerprint().c_str(),
+                run.traffic_fingerprint().c_str());
     std::printf("run directory: %s\n", std::filesystem::absolute(out).string().c_str());
   }
   if (!def.output.figures && !def.output.report) return 0;
