@@ -29,8 +29,9 @@ Radio::Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t
 Radio::~Radio() {
   if (!overhearing_thread_.joinable()) return;
   drain_overhearing();
-  hand_over_state_.store(kStop, std::memory_order_release);
-  hand_over_state_.notify_all();
+  stop_worker_.store(true, std::memory_order_release);
+  jobs_published_.fetch_add(1, std::memory_order_release);  // an empty hand-over wakes it to see the stop
+  jobs_published_.notify_one();
   overhearing_thread_.join();
 }
 
@@ -127,57 +128,59 @@ void Radio::start_overhearing_thread() {
   overhearing_thread_ = std::thread([this] { overhearing_worker(); });
 }
 
-void Radio::wait_until_worker_idle() const {
-  std::uint32_t state = hand_over_state_.load(std::memory_order_acquire);
-  // The thread normally is idle already: it books a hand-over in a fraction of the time this
-  // thread takes to gather one.
-  for (std::uint32_t spin = 0; state != kIdle && spin < spin_limit_; ++spin) {
+void Radio::wait_until_worker_behind_at_most(std::uint32_t behind) const {
+  const std::uint32_t published = jobs_published_.load(std::memory_order_relaxed);  // only this thread writes it
+  std::uint32_t booked = jobs_booked_.load(std::memory_order_acquire);
+  for (std::uint32_t spin = 0; published - booked > behind && spin < spin_limit_; ++spin) {
     pause_briefly();
-    state = hand_over_state_.load(std::memory_order_acquire);
+    booked = jobs_booked_.load(std::memory_order_acquire);
   }
-  while (state != kIdle) {
-    // Say that someone sleeps on the word (the thread then wakes it when done), and sleep.
-    if (state == kHanded &&
-        !hand_over_state_.compare_exchange_weak(state, kHandedAwaited, std::memory_order_acquire))
-      continue;  // `state` now holds the new value
-    hand_over_state_.wait(kHandedAwaited, std::memory_order_acquire);
-    state = hand_over_state_.load(std::memory_order_acquire);
+  while (published - booked > behind) {
+    jobs_booked_.wait(booked, std::memory_order_acquire);
+    booked = jobs_booked_.load(std::memory_order_acquire);
   }
 }
 
 void Radio::hand_over_jobs() const {
   if (jobs_filling_.empty()) return;
-  wait_until_worker_idle();
-  jobs_handed_.swap(jobs_filling_);
+  // The thread normally keeps up: it books a hand-over in a fraction of the time this thread
+  // takes to gather one.
+  wait_until_worker_behind_at_most(kHandOverSlots - 1);
+  const std::uint32_t published = jobs_published_.load(std::memory_order_relaxed);
+  jobs_handed_[published % kHandOverSlots].swap(jobs_filling_);
   jobs_filling_.clear();
-  hand_over_state_.store(kHanded, std::memory_order_release);
-  hand_over_state_.notify_all();  // a load of the waiter count when the thread is not asleep
+  jobs_published_.store(published + 1, std::memory_order_release);
+  jobs_published_.notify_one();  // a load of the waiter count when the thread is not asleep
 }
 
 void Radio::overhearing_worker() {
+  std::uint32_t booked = 0;
   for (;;) {
     // Spin a while (hand-overs come every few hundred microseconds while replies flow), then
     // sleep until the next one.
-    std::uint32_t state = hand_over_state_.load(std::memory_order_acquire);
-    for (std::uint32_t spin = 0; state == kIdle && spin < spin_limit_; ++spin) {
+    std::uint32_t published = jobs_published_.load(std::memory_order_acquire);
+    for (std::uint32_t spin = 0; published == booked && spin < spin_limit_; ++spin) {
       pause_briefly();
-      state = hand_over_state_.load(std::memory_order_acquire);
+      published = jobs_published_.load(std::memory_order_acquire);
     }
-    if (state == kIdle) {
-      hand_over_state_.wait(kIdle, std::memory_order_acquire);
+    if (published == booked) {
+      jobs_published_.wait(booked, std::memory_order_acquire);
       continue;
     }
-    if (state == kStop) return;
-    for (const OverhearingJob& job : jobs_handed_)
-      worker_heard_bytes_ += book_overhearing(job) * (job.booking & (kOneOverheard - 1));
-    if (hand_over_state_.exchange(kIdle, std::memory_order_acq_rel) == kHandedAwaited) hand_over_state_.notify_all();
+    if (stop_worker_.load(std::memory_order_acquire)) return;
+    for (; booked != published; ++booked) {
+      for (const OverhearingJob& job : jobs_handed_[booked % kHandOverSlots])
+        worker_heard_bytes_ += book_overhearing(job) * (job.booking & (kOneOverheard - 1));
+      jobs_booked_.store(booked + 1, std::memory_order_release);
+      jobs_booked_.notify_one();
+    }
   }
 }
 
 void Radio::drain_overhearing() const {
   if (!overhearing_thread_.joinable()) return;
   hand_over_jobs();
-  wait_until_worker_idle();
+  wait_until_worker_behind_at_most(0);
   total_heard_bytes_ += worker_heard_bytes_;
   worker_heard_bytes_ = 0;
 }

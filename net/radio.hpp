@@ -311,7 +311,7 @@ class Radio {
   // them while this one goes on, and every reader of the difference words or of
   // total_heard_bytes_ waits for it first (drain_overhearing). Only that thread writes
   // heard_diff_ while it runs. Either side waits by spinning a bounded while (none when the
-  // process has a single processor), then sleeping on the hand-over word
+  // process has a single processor), then sleeping on the other's counter
   // (docs/decisions/0008-overhearing-thread.md).
   struct OverhearingJob {
     double cx = 0.0, cy = 0.0, range = 0.0;
@@ -321,8 +321,8 @@ class Radio {
   /// Books `job`; returns its static hearers.
   std::uint64_t book_overhearing(const OverhearingJob& job) const;
   void start_overhearing_thread();
-  /// Returns once the thread has booked the last hand-over.
-  void wait_until_worker_idle() const;
+  /// Returns once the thread has booked all but `behind` of the hand-overs published.
+  void wait_until_worker_behind_at_most(std::uint32_t behind) const;
   /// Hands the gathered jobs to the thread (waiting until it is done with the last ones).
   void hand_over_jobs() const;
   void overhearing_worker();
@@ -334,13 +334,18 @@ class Radio {
   /// Hands over what is gathered, waits until the thread has booked it, adds its heard bytes.
   void drain_overhearing() const;
   static constexpr std::size_t kJobsPerHandOver = 512;
+  /// Hand-overs the thread may be behind before this one waits: when the thread is off its core
+  /// for a while (a busy machine, or one processor for both), this one goes on gathering.
+  static constexpr std::uint32_t kHandOverSlots = 8;
   /// Pauses either side spins before it sleeps (with two processors or more).
-  static constexpr std::uint32_t kSpinLimit = 20000;
-  // The hand-over word: idle (jobs_handed_ is this thread's), handed (the other thread's), handed
-  // and awaited (this thread sleeps until it is done), stop.
-  static constexpr std::uint32_t kIdle = 0, kHanded = 1, kStop = 2, kHandedAwaited = 3;
-  mutable std::vector<OverhearingJob> jobs_filling_, jobs_handed_;
-  alignas(64) mutable std::atomic<std::uint32_t> hand_over_state_{kIdle};
+  static constexpr std::uint32_t kSpinLimit = 2000;
+  mutable std::vector<OverhearingJob> jobs_filling_;
+  mutable std::array<std::vector<OverhearingJob>, kHandOverSlots> jobs_handed_;  // [hand-over % slots]
+  // Hand-overs published by this thread and booked by the other (counts that wrap): slots
+  // [booked, published) are the other thread's. Each side sleeps on the other's counter.
+  alignas(64) mutable std::atomic<std::uint32_t> jobs_published_{0};
+  alignas(64) mutable std::atomic<std::uint32_t> jobs_booked_{0};
+  std::atomic<bool> stop_worker_{false};
   mutable std::uint64_t worker_heard_bytes_ = 0;  // the thread's, until drained
   std::uint32_t spin_limit_ = 0;
   std::thread overhearing_thread_;
