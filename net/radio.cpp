@@ -123,7 +123,7 @@ bool Radio::unicast(NodeId source, NodeId destination, Payload payload) {
 void Radio::start_overhearing_thread() {
   // Waiting by spinning pays only when the other thread has a processor of its own: with one,
   // every spin takes the time the other needs to make progress (a lone run pinned to one core
-  // was 10-17 times slower). Both sides then sleep at once.
+  // was 10-17 times slower). With one, both sides go to sleep at once.
   spin_limit_ = sim::allowed_cpu_count() >= 2 ? kSpinLimit : 0;
   overhearing_thread_ = std::thread([this] { overhearing_worker(); });
 }

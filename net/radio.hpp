@@ -39,7 +39,7 @@ struct RadioParams {
   double loss = 0.0;               ///< probability that a reception is lost
   /// Book the overhearing of bulk unicasts (row runs into the difference words) on a
   /// second thread. Results are identical (integer sums, in any order, read only after it has
-  /// caught up); `masnet run` sets it on machines with two cores or more. Not a scenario key.
+  /// caught up); `masnet run` sets it when the process may run on two processors or more. Not a scenario key.
   bool overhearing_thread = false;
   /// ... from this many static nodes on: below, the bookkeeping is light and stays inline (the
   /// acoustic scenario's 1 600 sensors ran 3 % slower with the thread).
