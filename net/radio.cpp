@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "sim/cpus.hpp"
 #include "sim/free_slots.hpp"
 #include "sim/random.hpp"
 
@@ -11,7 +12,6 @@ namespace masnet::net {
 namespace {
 constexpr std::uint64_t kLossPurpose = sim::purpose("radio.loss");
 constexpr std::uint64_t kJitterPurpose = sim::purpose("radio.jitter");
-constexpr std::uint32_t kNoHotIndex = 0xFFFFFFFFu;
 constexpr double kMobileMark = std::numeric_limits<double>::quiet_NaN();
 }  // namespace
 
@@ -29,8 +29,9 @@ Radio::Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t
 Radio::~Radio() {
   if (!overhearing_thread_.joinable()) return;
   drain_overhearing();
-  jobs_ready_.store(2);  // neither 0 nor 1: wakes the thread to see the stop
-  jobs_ready_.notify_one();
+  stop_worker_.store(true, std::memory_order_release);
+  jobs_published_.fetch_add(1, std::memory_order_release);  // an empty hand-over wakes it to see the stop
+  jobs_published_.notify_one();
   overhearing_thread_.join();
 }
 
@@ -94,65 +95,6 @@ bool Radio::unicast(NodeId source, NodeId destination, Payload payload) {
   return transmit(source, destination, distance, std::move(payload), distance);
 }
 
-void Radio::prepare_index() {
-  // Keep what each node has heard across a rebuild (nodes added after the first frame).
-  materialize();
-  const std::size_t n_nodes = nodes_.size(), types = kMessageTypeCount;
-  std::vector<std::uint64_t> heard(n_nodes, 0), overheard(n_nodes, 0), count(n_nodes * types, 0), bytes(n_nodes * types, 0);
-  const std::size_t old_stride = heard_bytes_.size();
-  for (std::size_t n = 0; n < n_nodes; ++n) {
-    const std::uint32_t hot = hot_[n];
-    if (hot == kNoHotIndex) continue;
-    heard[n] = heard_bytes_[hot];
-    overheard[n] = overheard_count_[hot];
-    for (std::size_t t = 0; t < types; ++t) {
-      count[n * types + t] = rx_count_[t * old_stride + hot];
-      bytes[n * types + t] = rx_bytes_[t * old_stride + hot];
-    }
-  }
-  // Per-type tx counters are by node id with a stride of the node count: re-lay them out.
-  std::vector<TxCounter> tx(n_nodes * types);
-  const std::size_t old_nodes = tx_.size() / types;
-  for (std::size_t t = 0; t < types; ++t)
-    for (std::size_t n = 0; n < old_nodes; ++n) tx[t * n_nodes + n] = tx_[t * old_nodes + n];
-  tx_ = std::move(tx);
-  // Sensor grids lie on rows: index them as lines, so frames can be booked run by run.
-  std::vector<Vec2> static_positions;
-  static_positions.reserve(static_ids_.size());
-  for (const NodeId id : static_ids_) static_positions.push_back(positions_[sim::index(id)]);
-  use_lines_ = line_index_.build(static_positions, static_ids_);
-  if (!use_lines_) static_grid_.build(static_positions, static_ids_);
-  const std::vector<NodeId>& slots = use_lines_ ? line_index_.ids() : static_grid_.ids();
-  static_interest_ = 0;
-  static_interest_common_ = slots.empty() ? 0 : 0xFFFFFFFFu;
-  for (std::uint32_t k = 0; k < slots.size(); ++k) {
-    hot_[sim::index(slots[k])] = k;
-    static_interest_ |= nodes_[sim::index(slots[k])].interest;
-    static_interest_common_ &= nodes_[sim::index(slots[k])].interest;
-  }
-  for (std::size_t m = 0; m < mobile_ids_.size(); ++m)
-    hot_[sim::index(mobile_ids_[m])] = static_cast<std::uint32_t>(slots.size() + m);
-  interest_.assign(n_nodes, 0);
-  for (std::size_t n = 0; n < n_nodes; ++n) interest_[hot_[n]] = nodes_[n].interest;
-  heard_bytes_.assign(n_nodes, 0);
-  overheard_count_.assign(n_nodes, 0);
-  rx_count_.assign(n_nodes * types, 0);
-  rx_bytes_.assign(n_nodes * types, 0);
-  heard_diff_.assign(n_nodes + 1, 0);
-  rx_count_diff_.assign((n_nodes + 1) * types, 0);
-  rx_bytes_diff_.assign((n_nodes + 1) * types, 0);
-  for (std::size_t n = 0; n < n_nodes; ++n) {
-    const std::uint32_t hot = hot_[n];
-    heard_bytes_[hot] = heard[n];
-    overheard_count_[hot] = overheard[n];
-    for (std::size_t t = 0; t < types; ++t) {
-      rx_count_[t * n_nodes + hot] = count[n * types + t];
-      rx_bytes_[t * n_nodes + hot] = bytes[n * types + t];
-    }
-  }
-  index_dirty_ = false;
-}
-
 [[gnu::always_inline]] inline std::uint64_t Radio::book_overhearing(const OverhearingJob& job) const {
   std::uint64_t* const heard_diff = heard_diff_.data();
   const std::uint64_t booking = job.booking;
@@ -178,97 +120,69 @@ void Radio::prepare_index() {
   return hearers;
 }
 
+void Radio::start_overhearing_thread() {
+  // Waiting by spinning pays only when the other thread has a processor of its own: with one,
+  // every spin takes the time the other needs to make progress (a lone run pinned to one core
+  // was 10-17 times slower). With one, both sides go to sleep at once.
+  spin_limit_ = sim::allowed_cpu_count() >= 2 ? kSpinLimit : 0;
+  overhearing_thread_ = std::thread([this] { overhearing_worker(); });
+}
+
+void Radio::wait_until_worker_behind_at_most(std::uint32_t behind) const {
+  const std::uint32_t published = jobs_published_.load(std::memory_order_relaxed);  // only this thread writes it
+  std::uint32_t booked = jobs_booked_.load(std::memory_order_acquire);
+  for (std::uint32_t spin = 0; published - booked > behind && spin < spin_limit_; ++spin) {
+    pause_briefly();
+    booked = jobs_booked_.load(std::memory_order_acquire);
+  }
+  while (published - booked > behind) {
+    jobs_booked_.wait(booked, std::memory_order_acquire);
+    booked = jobs_booked_.load(std::memory_order_acquire);
+  }
+}
+
 void Radio::hand_over_jobs() const {
   if (jobs_filling_.empty()) return;
-  // Wait for the thread to finish the last hand-over (it normally has: it books a batch in a
-  // fraction of the time this thread takes to gather one).
-  while (jobs_ready_.load(std::memory_order_acquire) == 1) {
-#if defined(__SSE2__)
-    _mm_pause();
-#endif
-  }
-  jobs_handed_.swap(jobs_filling_);
+  // The thread normally keeps up: it books a hand-over in a fraction of the time this thread
+  // takes to gather one.
+  wait_until_worker_behind_at_most(kHandOverSlots - 1);
+  const std::uint32_t published = jobs_published_.load(std::memory_order_relaxed);
+  jobs_handed_[published % kHandOverSlots].swap(jobs_filling_);
   jobs_filling_.clear();
-  jobs_ready_.store(1, std::memory_order_release);
-  jobs_ready_.notify_one();
+  jobs_published_.store(published + 1, std::memory_order_release);
+  jobs_published_.notify_one();  // a load of the waiter count when the thread is not asleep
 }
 
 void Radio::overhearing_worker() {
+  std::uint32_t booked = 0;
   for (;;) {
     // Spin a while (hand-overs come every few hundred microseconds while replies flow), then
     // sleep until the next one.
-    std::uint32_t ready = jobs_ready_.load(std::memory_order_acquire);
-    for (int spin = 0; ready == 0 && spin < 20000; ++spin) {
-#if defined(__SSE2__)
-      _mm_pause();
-#endif
-      ready = jobs_ready_.load(std::memory_order_acquire);
+    std::uint32_t published = jobs_published_.load(std::memory_order_acquire);
+    for (std::uint32_t spin = 0; published == booked && spin < spin_limit_; ++spin) {
+      pause_briefly();
+      published = jobs_published_.load(std::memory_order_acquire);
     }
-    if (ready == 0) {
-      jobs_ready_.wait(0, std::memory_order_acquire);
+    if (published == booked) {
+      jobs_published_.wait(booked, std::memory_order_acquire);
       continue;
     }
-    if (ready == 2) return;  // stop
-    for (const OverhearingJob& job : jobs_handed_)
-      worker_heard_bytes_ += book_overhearing(job) * (job.booking & (kOneOverheard - 1));
-    jobs_ready_.store(0, std::memory_order_release);
+    if (stop_worker_.load(std::memory_order_acquire)) return;
+    for (; booked != published; ++booked) {
+      for (const OverhearingJob& job : jobs_handed_[booked % kHandOverSlots])
+        worker_heard_bytes_ += book_overhearing(job) * (job.booking & (kOneOverheard - 1));
+      jobs_booked_.store(booked + 1, std::memory_order_release);
+      jobs_booked_.notify_one();
+    }
   }
 }
 
 void Radio::drain_overhearing() const {
   if (!overhearing_thread_.joinable()) return;
   hand_over_jobs();
-  while (jobs_ready_.load(std::memory_order_acquire) == 1) {
-#if defined(__SSE2__)
-    _mm_pause();
-#endif
-  }
+  wait_until_worker_behind_at_most(0);
   total_heard_bytes_ += worker_heard_bytes_;
   worker_heard_bytes_ = 0;
-}
-
-void Radio::materialize() const {
-  drain_overhearing();
-  if (!diffs_pending_) return;
-  const std::size_t n = heard_bytes_.size();
-  std::uint64_t packed = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    packed += heard_diff_[k];
-    heard_bytes_[k] += packed & (kOneOverheard - 1);
-    overheard_count_[k] += packed >> kHeardBytesBits;
-  }
-  std::fill(heard_diff_.begin(), heard_diff_.end(), 0);
-  pending_bulk_frames_ = pending_bulk_bytes_ = 0;
-  for (std::size_t t = 0; t < kMessageTypeCount; ++t) {
-    std::uint64_t count = 0, bytes = 0;
-    for (std::size_t k = 0; k < n; ++k) {
-      count += rx_count_diff_[t * (n + 1) + k];
-      bytes += rx_bytes_diff_[t * (n + 1) + k];
-      rx_count_[t * n + k] += count;
-      rx_bytes_[t * n + k] += bytes;
-      heard_bytes_[k] += bytes;  // a bulk broadcast's receivers heard what they received
-    }
-  }
-  std::fill(rx_count_diff_.begin(), rx_count_diff_.end(), 0);
-  std::fill(rx_bytes_diff_.begin(), rx_bytes_diff_.end(), 0);
-  diffs_pending_ = false;
-}
-
-TypeCounters Radio::counters(NodeId node, MessageType type) const {
-  materialize();
-  const auto t = static_cast<std::size_t>(type);
-  TypeCounters c;
-  const std::size_t stride = tx_.size() / kMessageTypeCount;  // nodes at the last indexing
-  if (sim::index(node) < stride) {
-    c.tx_count = tx_[t * stride + sim::index(node)].count;
-    c.tx_bytes = tx_[t * stride + sim::index(node)].bytes;
-  }
-  const std::uint32_t hot = hot_[sim::index(node)];
-  if (hot != kNoHotIndex) {
-    c.rx_count = rx_count_[t * heard_bytes_.size() + hot];
-    c.rx_bytes = rx_bytes_[t * heard_bytes_.size() + hot];
-  }
-  return c;
 }
 
 const std::vector<Vec2>& Radio::mobile_positions_now() {
@@ -328,25 +242,6 @@ double Radio::idle_j(const Node& node) const {
   return params_.energy.idle_power_w * sim::to_seconds(until - node.added_at);
 }
 
-NodeRadioStats Radio::stats(NodeId node) {
-  if (index_dirty_) prepare_index();
-  materialize();
-  const Node& n = nodes_[sim::index(node)];
-  const std::uint32_t hot = hot_[sim::index(node)];
-  NodeRadioStats s;
-  s.heard_bytes = heard_bytes_[hot];
-  s.overheard_count = overheard_count_[hot];
-  s.lost_count = n.lost_count;
-  s.unreachable_count = n.unreachable_count;
-  s.refused_count = n.refused_count;
-  s.energy_tx_j = senders_[sim::index(node)].energy_tx_j;
-  s.energy_rx_j = rx_energy_j(params_.energy, 8.0 * static_cast<double>(s.heard_bytes));
-  s.energy_idle_j = idle_j(n);
-  s.alive = n.alive;
-  s.died_at = n.died_at;
-  return s;
-}
-
 double Radio::consumed_j(NodeId id) const {
   return senders_[sim::index(id)].energy_tx_j + idle_j(nodes_[sim::index(id)]) +
          rx_energy_j(params_.energy, 8.0 * static_cast<double>(heard_bytes_[hot_[sim::index(id)]]));
@@ -375,6 +270,11 @@ void Radio::schedule_depletion(NodeId id) {
   node.depletion_event = simulator_.after(left, [this, id] { kill(id); });
 }
 
+void Radio::mix_refusal(NodeId source) {
+  traffic_.mix(static_cast<std::uint64_t>(sim::to_ns(simulator_.now())));
+  traffic_.mix(kRefusedMark | sim::index(source));
+}
+
 void Radio::kill(NodeId id) {  // the battery is empty
   Node& node = nodes_[sim::index(id)];
   if (!node.alive) return;
@@ -392,6 +292,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   // fetched for a frame.
   if (battery && !nodes_[source_index].alive) {
     ++nodes_[source_index].refused_count;
+    mix_refusal(source);
     return false;
   }
   Sender& src = senders_[source_index];
@@ -402,6 +303,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   const double tx_j = tx_energy_j(params_.energy, bits, range * params_.meters_per_unit, crossover_m_);
   if (battery && !afford(source, tx_j)) {
     ++nodes_[source_index].refused_count;
+    mix_refusal(source);
     return false;
   }
   src.energy_tx_j += tx_j;
@@ -437,7 +339,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   std::uint64_t* const overheard = overheard_count_.data();
   std::uint64_t* const rx_count = rx_count_.data() + type_index * heard_bytes_.size();
   std::uint64_t* const rx_bytes = rx_bytes_.data() + type_index * heard_bytes_.size();
-  std::uint64_t received = 0;
+  std::uint64_t received = 0, lost = 0;
   const bool drains = battery && params_.energy.idle_power_w > 0;
   const std::uint32_t* const interest = interest_.data();
   auto receive = [&](NodeId id, std::uint32_t hot) {
@@ -449,6 +351,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
       Node& node = nodes_[sim::index(id)];
       if (sim::keyed_uniform01(seed_, kLossPurpose, nodes_[source_index].random_key, node.random_key, frame_number) < params_.loss) {
         ++node.lost_count;
+        ++lost;
         return;
       }
     }
@@ -499,7 +402,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
       // Unicasts, the bulk of the traffic: one job each (see OverhearingJob).
       const OverhearingJob job{center.x(), center.y(), range, heard_booking, source_hot, destination_hot};
       if (params_.overhearing_thread && static_count >= params_.overhearing_thread_min_nodes) {
-        if (!overhearing_thread_.joinable()) overhearing_thread_ = std::thread([this] { overhearing_worker(); });
+        if (!overhearing_thread_.joinable()) start_overhearing_thread();
         jobs_filling_.push_back(job);
         if (jobs_filling_.size() >= kJobsPerHandOver) hand_over_jobs();
       } else {
@@ -571,6 +474,12 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   totals_[type_index].rx_count += received;
   totals_[type_index].rx_bytes += received * bytes;
   total_heard_bytes_ += hearers * bytes;
+  // What this frame did, in send order. Its overhearers are not here: the second thread may be
+  // counting them still; they enter the traffic fingerprint as per-node sums at the end.
+  traffic_.mix(static_cast<std::uint64_t>(sim::to_ns(now)));
+  traffic_.mix((std::uint64_t{sim::index(source)} << 32) | sim::index(destination));
+  traffic_.mix((std::uint64_t{static_cast<std::uint8_t>(type)} << 32) | bytes);
+  traffic_.mix((received << 32) ^ lost);
   if (receivers.empty()) return true;
   // Delivery order is by node id, whatever the grid's layout.
   // (On a sensor grid the runs already come in id order: check before sorting.)
@@ -602,7 +511,11 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
 
 void Radio::hand_over(const Frame& frame, NodeId receiver) {
   // Died while the frame was in the air (only batteries kill; skip the lookup otherwise).
-  if (battery_limited() && !nodes_[sim::index(receiver)].alive) return;
+  if (battery_limited() && !nodes_[sim::index(receiver)].alive) {
+    traffic_.mix((std::uint64_t{sim::index(frame.source)} << 32) | sim::index(receiver));
+    traffic_.mix(kUndeliveredMark ^ frame.number);
+    return;
+  }
   sim::Fingerprint& fp = simulator_.fingerprint();
   fp.mix((std::uint64_t{sim::index(frame.source)} << 32) | sim::index(receiver));
   fp.mix((std::uint64_t{static_cast<std::uint8_t>(frame.type)} << 32) | frame.size_bytes);

@@ -39,7 +39,7 @@ struct RadioParams {
   double loss = 0.0;               ///< probability that a reception is lost
   /// Book the overhearing of bulk unicasts (row runs into the difference words) on a
   /// second thread. Results are identical (integer sums, in any order, read only after it has
-  /// caught up); `masnet run` sets it on machines with two cores or more. Not a scenario key.
+  /// caught up); `masnet run` sets it when the process may run on two processors or more. Not a scenario key.
   bool overhearing_thread = false;
   /// ... from this many static nodes on: below, the bookkeeping is light and stays inline (the
   /// acoustic scenario's 1 600 sensors ran 3 % slower with the thread).
@@ -159,7 +159,20 @@ class Radio {
   /// Airtime of a frame of `bytes`.
   sim::Duration airtime(std::uint32_t bytes) const;
 
+  /// A hash of the radio's outcomes so far: every transmission in send order (time, sender,
+  /// addressee, type, bytes, receptions, losses), every refusal and every frame that found its
+  /// receiver dead, then every node's counters, overhearing, energy and death, in id order.
+  /// The simulator's fingerprint sees only frames handed to a listener; this one also sees
+  /// what nobody handled (docs/radio-and-energy.md). The same with or without the second thread.
+  sim::Fingerprint traffic_fingerprint();
+
  private:
+  static constexpr std::uint32_t kNoHotIndex = 0xFFFFFFFFu;
+  // Set in the top bits of traffic words that are not a transmission's (never a time, id pair
+  // or sequence number of a real run).
+  static constexpr std::uint64_t kRefusedMark = std::uint64_t{0xA5} << 56;
+  static constexpr std::uint64_t kUndeliveredMark = std::uint64_t{0x5A} << 56;
+
   // Cold per-node state: what only batteries, loss, jitter, airtime queues and reports need.
   // What every transmission reads and writes of its sender lives apart in dense arrays by node
   // id (`senders_`, `hot_`, `positions_`): a burst of replies from neighbouring sensors walks
@@ -249,6 +262,8 @@ class Radio {
   double idle_j(const Node& node) const;
   void schedule_depletion(NodeId id);
   void kill(NodeId id);
+  /// A send refused for an empty battery, into the traffic fingerprint.
+  void mix_refusal(NodeId source);
   void hand_over(const Frame& frame, NodeId receiver);
   /// The batch that delivers at `arrival` (see `open_batch_`), scheduled if new.
   Batch& batch_for(sim::Time arrival);
@@ -295,7 +310,9 @@ class Radio {
   // jobs gather in `jobs_filling_` and are handed over a few hundred at a time, the thread books
   // them while this one goes on, and every reader of the difference words or of
   // total_heard_bytes_ waits for it first (drain_overhearing). Only that thread writes
-  // heard_diff_ while it runs.
+  // heard_diff_ while it runs. Either side waits by spinning a bounded while (none when the
+  // process has a single processor), then sleeping on the other's counter
+  // (docs/decisions/0008-overhearing-thread.md).
   struct OverhearingJob {
     double cx = 0.0, cy = 0.0, range = 0.0;
     std::uint64_t booking = 0;  // packed heard bytes + one overheard frame
@@ -303,15 +320,34 @@ class Radio {
   };
   /// Books `job`; returns its static hearers.
   std::uint64_t book_overhearing(const OverhearingJob& job) const;
+  void start_overhearing_thread();
+  /// Returns once the thread has booked all but `behind` of the hand-overs published.
+  void wait_until_worker_behind_at_most(std::uint32_t behind) const;
   /// Hands the gathered jobs to the thread (waiting until it is done with the last ones).
   void hand_over_jobs() const;
   void overhearing_worker();
+  static void pause_briefly() {
+#if defined(__SSE2__)
+    _mm_pause();
+#endif
+  }
   /// Hands over what is gathered, waits until the thread has booked it, adds its heard bytes.
   void drain_overhearing() const;
   static constexpr std::size_t kJobsPerHandOver = 512;
-  mutable std::vector<OverhearingJob> jobs_filling_, jobs_handed_;
-  alignas(64) mutable std::atomic<std::uint32_t> jobs_ready_{0};  // 0 idle, 1 jobs_handed_ is the thread's, 2 stop
-  mutable std::uint64_t worker_heard_bytes_ = 0;                   // the thread's, until drained
+  /// Hand-overs the thread may be behind before this one waits: when the thread is off its core
+  /// for a while (a busy machine, or one processor for both), this one goes on gathering.
+  static constexpr std::uint32_t kHandOverSlots = 8;
+  /// Pauses either side spins before it sleeps (with two processors or more).
+  static constexpr std::uint32_t kSpinLimit = 2000;
+  mutable std::vector<OverhearingJob> jobs_filling_;
+  mutable std::array<std::vector<OverhearingJob>, kHandOverSlots> jobs_handed_;  // [hand-over % slots]
+  // Hand-overs published by this thread and booked by the other (counts that wrap): slots
+  // [booked, published) are the other thread's. Each side sleeps on the other's counter.
+  alignas(64) mutable std::atomic<std::uint32_t> jobs_published_{0};
+  alignas(64) mutable std::atomic<std::uint32_t> jobs_booked_{0};
+  std::atomic<bool> stop_worker_{false};
+  mutable std::uint64_t worker_heard_bytes_ = 0;  // the thread's, until drained
+  std::uint32_t spin_limit_ = 0;
   std::thread overhearing_thread_;
 
   std::vector<NodeId> static_ids_, mobile_ids_;
@@ -344,6 +380,7 @@ class Radio {
   std::deque<Jittered> jittered_;  // deque: a frame stays put while handlers send new ones
   std::vector<std::uint32_t> free_jittered_;
   std::vector<NodeId> scratch_receivers_;
+  sim::Fingerprint traffic_;  // the per-transmission part of traffic_fingerprint()
 };
 
 template <class Visit>

@@ -1,11 +1,12 @@
 // The `masnet` command line (SPEC §7). Exit codes: 0 success, 2 bad input, 1 internal error.
 #include <charconv>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <iostream>
 #include <optional>
-#include <thread>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -63,6 +64,15 @@ std::optional<std::uint64_t> parse_seed(const std::string& text, Diagnostic& pro
   return value;
 }
 
+/// MASNET_OVERHEARING_THREAD=0 or 1 forces the radio's second thread off or on, to compare
+/// the two (docs/performance.md); otherwise it runs when two processors are allowed.
+bool overhearing_thread_wanted() {
+  const char* forced = std::getenv("MASNET_OVERHEARING_THREAD");
+  if (forced != nullptr && (std::strcmp(forced, "0") == 0 || std::strcmp(forced, "1") == 0))
+    return forced[0] == '1';
+  return masnet::sim::allowed_cpu_count() >= 2;
+}
+
 int command_run(const RunArgs& args) {
   std::optional<std::uint64_t> seed;
   if (!args.seed.empty() || args.seed_given) {
@@ -84,10 +94,10 @@ int command_run(const RunArgs& args) {
     return kBadInput;
   }
   // A lone run may use a second core for the radio's overhearing bookkeeping (the same results;
-  // sweeps keep their cores for whole runs) — only when this process may run on two CPUs:
-  // pinned to one, the two threads would only take turns.
+  // sweeps keep their cores for whole runs) when the process may run on two processors: pinned
+  // to one (taskset, a cpuset), the two threads would only take turns.
   ScenarioDef run_def = def;
-  run_def.world.radio.overhearing_thread = masnet::sim::allowed_cpu_count() >= 2;
+  run_def.world.radio.overhearing_thread = overhearing_thread_wanted();
   Run run(run_def);
   {
     ProgressBar bar(def.duration_s, !args.quiet && ProgressBar::stderr_is_terminal());
@@ -131,9 +141,10 @@ int command_run(const RunArgs& args) {
   for (const auto& warning : summary.at("warnings"))
     std::fprintf(stderr, "masnet: warning: %s\n", warning.get<std::string>().c_str());
   if (!args.quiet) {
-    std::printf("%s: %.3f s simulated in %.3f s wall, %llu events, fingerprint %s\n",
+    std::printf("%s: %.3f s simulated in %.3f s wall, %llu events, fingerprint %s, traffic %s\n",
                 def.name.c_str(), def.duration_s, run.wall_time_s(),
-                static_cast<unsigned long long>(run.events()), run.fingerprint().c_str());
+                static_cast<unsigned long long>(run.events()), run.fingerprint().c_str(),
+                run.traffic_fingerprint().c_str());
     std::printf("run directory: %s\n", normalised_directory(out).string().c_str());
   }
   if (!render_error.empty()) {

@@ -22,6 +22,7 @@ Run::~Run() = default;
 
 std::uint64_t Run::events() const { return simulator_->events_run(); }
 std::string Run::fingerprint() const { return simulator_->fingerprint().hex(); }
+std::string Run::traffic_fingerprint() const { return traffic_fingerprint_; }
 
 void Run::execute(const ProgressFn& progress) {
   const auto wall_start = std::chrono::steady_clock::now();
@@ -59,6 +60,7 @@ void Run::execute(const ProgressFn& progress) {
   }
   // The final state is always sampled, whatever the period.
   if (recorder_->samples().empty() || recorder_->samples().back().t_s != def_.duration_s) recorder_->sample();
+  traffic_fingerprint_ = world_->radio().traffic_fingerprint().hex();  // a pass over every node: once
   if (def_.baseline && def_.world.dispenser.enabled) {
     // The uncontrolled twin: same scenario and seed, dispensers off, so that with/without
     // control always sit side by side (SPEC §6.2).
@@ -82,6 +84,7 @@ nlohmann::json Run::summary() const {
   j["wall_time_s"] = wall_time_s_;
   j["events"] = simulator_->events_run();
   j["fingerprint"] = simulator_->fingerprint().hex();
+  j["traffic_fingerprint"] = traffic_fingerprint();
   j["run_key"] = run_key(def_);
   if (!baseline_fingerprint_.empty()) j["baseline_fingerprint"] = baseline_fingerprint_;
   j["scenario"] = {{"name", def_.name},

@@ -33,6 +33,9 @@ class Run {
   const Recorder& recorder() const { return *recorder_; }
   std::uint64_t events() const;
   std::string fingerprint() const;
+  /// The radio's outcomes (net::Radio::traffic_fingerprint) at the end of the run: with
+  /// `fingerprint`, "same run".
+  std::string traffic_fingerprint() const;
   double wall_time_s() const { return wall_time_s_; }
 
  private:
@@ -42,6 +45,7 @@ class Run {
   std::unique_ptr<Recorder> recorder_;
   double wall_time_s_ = 0.0;
   std::string baseline_fingerprint_;
+  std::string traffic_fingerprint_;
 };
 
 /// A key that names the run: the same resolved scenario (seed included) and version give

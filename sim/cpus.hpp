@@ -1,10 +1,11 @@
 #pragma once
-// How many CPUs this process may run on: the affinity mask (taskset, cgroups' cpusets, a
-// batch system's binding), not the machine's core count.
+// How many processors this process may run on: what `taskset`, a container's cpuset or a
+// batch scheduler left it, not how many the machine has.
 
 namespace masnet::sim {
 
-/// The number of CPUs in this process's affinity mask; at least 1.
+/// The processors in this process's affinity mask (at least 1). Falls back to
+/// std::thread::hardware_concurrency() where the mask cannot be read.
 int allowed_cpu_count();
 
 }  // namespace masnet::sim

@@ -1,0 +1,164 @@
+// The radio's ledger read back: the per-node layout by hot index (prepare_index), the bulk
+// bookings folded into the counters (materialize), and what reports and tests ask of it.
+#include <algorithm>
+
+#include "net/radio.hpp"
+
+namespace masnet::net {
+
+void Radio::prepare_index() {
+  // Keep what each node has heard across a rebuild (nodes added after the first frame).
+  materialize();
+  const std::size_t n_nodes = nodes_.size(), types = kMessageTypeCount;
+  std::vector<std::uint64_t> heard(n_nodes, 0), overheard(n_nodes, 0), count(n_nodes * types, 0), bytes(n_nodes * types, 0);
+  const std::size_t old_stride = heard_bytes_.size();
+  for (std::size_t n = 0; n < n_nodes; ++n) {
+    const std::uint32_t hot = hot_[n];
+    if (hot == kNoHotIndex) continue;
+    heard[n] = heard_bytes_[hot];
+    overheard[n] = overheard_count_[hot];
+    for (std::size_t t = 0; t < types; ++t) {
+      count[n * types + t] = rx_count_[t * old_stride + hot];
+      bytes[n * types + t] = rx_bytes_[t * old_stride + hot];
+    }
+  }
+  // Per-type tx counters are by node id with a stride of the node count: re-lay them out.
+  std::vector<TxCounter> tx(n_nodes * types);
+  const std::size_t old_nodes = tx_.size() / types;
+  for (std::size_t t = 0; t < types; ++t)
+    for (std::size_t n = 0; n < old_nodes; ++n) tx[t * n_nodes + n] = tx_[t * old_nodes + n];
+  tx_ = std::move(tx);
+  // Sensor grids lie on rows: index them as lines, so frames can be booked run by run.
+  std::vector<Vec2> static_positions;
+  static_positions.reserve(static_ids_.size());
+  for (const NodeId id : static_ids_) static_positions.push_back(positions_[sim::index(id)]);
+  use_lines_ = line_index_.build(static_positions, static_ids_);
+  if (!use_lines_) static_grid_.build(static_positions, static_ids_);
+  const std::vector<NodeId>& slots = use_lines_ ? line_index_.ids() : static_grid_.ids();
+  static_interest_ = 0;
+  static_interest_common_ = slots.empty() ? 0 : 0xFFFFFFFFu;
+  for (std::uint32_t k = 0; k < slots.size(); ++k) {
+    hot_[sim::index(slots[k])] = k;
+    static_interest_ |= nodes_[sim::index(slots[k])].interest;
+    static_interest_common_ &= nodes_[sim::index(slots[k])].interest;
+  }
+  for (std::size_t m = 0; m < mobile_ids_.size(); ++m)
+    hot_[sim::index(mobile_ids_[m])] = static_cast<std::uint32_t>(slots.size() + m);
+  interest_.assign(n_nodes, 0);
+  for (std::size_t n = 0; n < n_nodes; ++n) interest_[hot_[n]] = nodes_[n].interest;
+  heard_bytes_.assign(n_nodes, 0);
+  overheard_count_.assign(n_nodes, 0);
+  rx_count_.assign(n_nodes * types, 0);
+  rx_bytes_.assign(n_nodes * types, 0);
+  heard_diff_.assign(n_nodes + 1, 0);
+  rx_count_diff_.assign((n_nodes + 1) * types, 0);
+  rx_bytes_diff_.assign((n_nodes + 1) * types, 0);
+  for (std::size_t n = 0; n < n_nodes; ++n) {
+    const std::uint32_t hot = hot_[n];
+    heard_bytes_[hot] = heard[n];
+    overheard_count_[hot] = overheard[n];
+    for (std::size_t t = 0; t < types; ++t) {
+      rx_count_[t * n_nodes + hot] = count[n * types + t];
+      rx_bytes_[t * n_nodes + hot] = bytes[n * types + t];
+    }
+  }
+  index_dirty_ = false;
+}
+
+void Radio::materialize() const {
+  drain_overhearing();
+  if (!diffs_pending_) return;
+  const std::size_t n = heard_bytes_.size();
+  std::uint64_t packed = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    packed += heard_diff_[k];
+    heard_bytes_[k] += packed & (kOneOverheard - 1);
+    overheard_count_[k] += packed >> kHeardBytesBits;
+  }
+  std::fill(heard_diff_.begin(), heard_diff_.end(), 0);
+  pending_bulk_frames_ = pending_bulk_bytes_ = 0;
+  for (std::size_t t = 0; t < kMessageTypeCount; ++t) {
+    std::uint64_t count = 0, bytes = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      count += rx_count_diff_[t * (n + 1) + k];
+      bytes += rx_bytes_diff_[t * (n + 1) + k];
+      rx_count_[t * n + k] += count;
+      rx_bytes_[t * n + k] += bytes;
+      heard_bytes_[k] += bytes;  // a bulk broadcast's receivers heard what they received
+    }
+  }
+  std::fill(rx_count_diff_.begin(), rx_count_diff_.end(), 0);
+  std::fill(rx_bytes_diff_.begin(), rx_bytes_diff_.end(), 0);
+  diffs_pending_ = false;
+}
+
+TypeCounters Radio::counters(NodeId node, MessageType type) const {
+  materialize();
+  const auto t = static_cast<std::size_t>(type);
+  TypeCounters c;
+  const std::size_t stride = tx_.size() / kMessageTypeCount;  // nodes at the last indexing
+  if (sim::index(node) < stride) {
+    c.tx_count = tx_[t * stride + sim::index(node)].count;
+    c.tx_bytes = tx_[t * stride + sim::index(node)].bytes;
+  }
+  const std::uint32_t hot = hot_[sim::index(node)];
+  if (hot != kNoHotIndex) {
+    c.rx_count = rx_count_[t * heard_bytes_.size() + hot];
+    c.rx_bytes = rx_bytes_[t * heard_bytes_.size() + hot];
+  }
+  return c;
+}
+
+NodeRadioStats Radio::stats(NodeId node) {
+  if (index_dirty_) prepare_index();
+  materialize();
+  const Node& n = nodes_[sim::index(node)];
+  const std::uint32_t hot = hot_[sim::index(node)];
+  NodeRadioStats s;
+  s.heard_bytes = heard_bytes_[hot];
+  s.overheard_count = overheard_count_[hot];
+  s.lost_count = n.lost_count;
+  s.unreachable_count = n.unreachable_count;
+  s.refused_count = n.refused_count;
+  s.energy_tx_j = senders_[sim::index(node)].energy_tx_j;
+  s.energy_rx_j = rx_energy_j(params_.energy, 8.0 * static_cast<double>(s.heard_bytes));
+  s.energy_idle_j = idle_j(n);
+  s.alive = n.alive;
+  s.died_at = n.died_at;
+  return s;
+}
+
+sim::Fingerprint Radio::traffic_fingerprint() {
+  if (index_dirty_) prepare_index();
+  materialize();
+  // The per-frame words are mixed in send order as frames go (see transmit). The overhearing of
+  // bulk unicasts, booked in any order and maybe on the second thread, enters here as the
+  // folded per-node sums, in id order: the value does not depend on who booked them.
+  sim::Fingerprint fp = traffic_;
+  const std::size_t n_nodes = nodes_.size();
+  const std::size_t tx_stride = tx_.size() / kMessageTypeCount;
+  const std::size_t rx_stride = heard_bytes_.size();
+  for (std::size_t n = 0; n < n_nodes; ++n) {
+    const Node& node = nodes_[n];
+    const std::uint32_t hot = hot_[n];
+    fp.mix(heard_bytes_[hot]);
+    fp.mix(overheard_count_[hot]);
+    fp.mix(node.lost_count);
+    fp.mix((node.unreachable_count << 32) ^ node.refused_count);
+    fp.mix(senders_[n].energy_tx_j);
+    fp.mix(static_cast<std::uint64_t>(sim::to_ns(node.died_at)) ^ std::uint64_t{node.alive});
+    for (std::size_t t = 0; t < kMessageTypeCount; ++t) {
+      const TxCounter sent = n < tx_stride ? tx_[t * tx_stride + n] : TxCounter{};
+      const std::uint64_t rx_count = rx_count_[t * rx_stride + hot], rx_bytes = rx_bytes_[t * rx_stride + hot];
+      if ((sent.count | sent.bytes | rx_count | rx_bytes) == 0) continue;  // most nodes use few types
+      fp.mix(std::uint64_t{t} << 56 ^ n);
+      fp.mix(sent.count);
+      fp.mix(sent.bytes);
+      fp.mix(rx_count);
+      fp.mix(rx_bytes);
+    }
+  }
+  return fp;
+}
+
+}  // namespace masnet::net
