@@ -1,5 +1,5 @@
 #pragma once
-// Density fields ρ(s, t) >= 0 sampled by the sensors (SPEC §2): acoustic targets (paper
+// Density fields ρ(s, t) >= 0 sampled by the sensors (docs/field-models.md): acoustic targets (paper
 // eq. 3), Gaussian bumps, uniform. The diffusion PDE lives in diffusion_field.hpp and is
 // advanced by the world. See docs/field-models.md.
 #include <cmath>
@@ -39,7 +39,7 @@ struct FieldDef {
   std::vector<PathDef> targets;
   // gaussian: ρ(s,t) = Σ_b A_b exp(−‖s − c_b(t)‖² / (2σ_b²))
   std::vector<GaussianBump> bumps;
-  // diffusion: the PDE of SPEC §6.2 with moving point sources (advanced by the world)
+  // diffusion: the PDE of docs/field-models.md with moving point sources (advanced by the world)
   DiffusionParams diffusion;
   std::vector<SourceDef> sources;
 };

@@ -1,6 +1,6 @@
 #pragma once
 // Robot dynamics of paper eq. (2): p̈ = −k (p − c) − k_v ṗ, with c the last computed centroid.
-// The law is linear, so between centroid changes the motion has a closed form (STYLE habit 6);
+// The law is linear, so between centroid changes the motion has a closed form;
 // with a speed limit it is not, and we integrate with fixed RK4 substeps from the segment start.
 #include <cstdint>
 

@@ -1,5 +1,5 @@
 #pragma once
-// The first-order radio energy model (SPEC §4; Heinzelman et al.):
+// The first-order radio energy model (Heinzelman et al.; docs/radio-and-energy.md):
 //   E_tx(k, d) = E_elec·k + ε_fs·k·d²   for d <  d0
 //              = E_elec·k + ε_mp·k·d⁴   for d >= d0,    d0 = sqrt(ε_fs / ε_mp)
 //   E_rx(k)    = E_elec·k

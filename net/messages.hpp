@@ -1,6 +1,6 @@
 #pragma once
-// Message value types (STYLE habit 5): a std::variant of payload structs, each with an
-// explicit size in bytes (SPEC §4). The radio knows these formats, never protocol logic.
+// Message value types: a std::variant of payload structs, each with an
+// explicit size in bytes (docs/radio-and-energy.md). The radio knows these formats, never protocol logic.
 #include <array>
 #include <cstdint>
 #include <string_view>
@@ -72,7 +72,7 @@ inline std::string_view name_of(MessageType type) {
   return kMessageTypeNames[static_cast<std::size_t>(type)];
 }
 
-/// Field sizes on the air (bytes). Defaults follow SPEC §4; all configurable (`radio.sizes`).
+/// Field sizes on the air (bytes). Defaults: docs/decisions/0004-radio-timing-and-sizes.md; all configurable (`radio.sizes`).
 struct MessageSizes {
   std::uint32_t header_bytes = 8;       ///< MAC/PHY header and frame check
   std::uint32_t id_bytes = 2;           ///< a node id

@@ -1,8 +1,8 @@
 #pragma once
-// The simulated radio as a *medium* (STYLE: ARGoS range-and-bearing, ns-3 YansWifiChannel):
+// The simulated radio as a *medium* (like ARGoS's range-and-bearing medium and ns-3's YansWifiChannel):
 // unit-disk reception with a per-transmission range, delay = latency + airtime + jitter,
 // Bernoulli loss per reception, per-node counters by message type, and the energy ledger of
-// SPEC §4. It knows message formats, never protocol logic. See docs/radio-and-energy.md.
+// It knows message formats, never protocol logic. See docs/radio-and-energy.md.
 #include <array>
 #include <atomic>
 #include <bit>

@@ -1,5 +1,5 @@
 #pragma once
-// SK(ρ): the class-K scaling applied to readings before centroids (paper §IV, SPEC §2).
+// SK(ρ): the class-K scaling applied to readings before centroids (paper §IV; docs/field-models.md).
 #include <cmath>
 
 namespace masnet::protocols {

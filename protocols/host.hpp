@@ -1,5 +1,5 @@
 #pragma once
-// The narrow interface through which a protocol state machine touches the world (STYLE:
+// The narrow interface through which a protocol state machine touches the world (
 // ARGoS controllers see only sensors and actuators). A test drives a protocol with a fake
 // host and no radio; the world implements it for real robots and sensors.
 #include <array>
@@ -25,7 +25,7 @@ struct MessageTally {
   std::uint64_t count = 0, bytes = 0;
 };
 
-/// What one Voronoi update did (SPEC §5.4). Recorders judge it (e.g. cell correctness).
+/// What one Voronoi update did (docs/protocols.md). Recorders judge it (e.g. cell correctness).
 struct UpdateRecord {
   NodeId robot = sim::kNoNode;
   std::uint32_t update = 0;   ///< the robot's update counter, from 1

@@ -1,5 +1,5 @@
 #pragma once
-// The Lloyd control target (paper §III-B, SPEC §5.2): the centroid of the readings inside a
+// The Lloyd control target (paper §III-B; docs/protocols.md): the centroid of the readings inside a
 // cell, each weighted by SK(ρ)·A(s), over positive readings only.
 #include <cstddef>
 #include <cstdint>

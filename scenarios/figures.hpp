@@ -1,5 +1,5 @@
 #pragma once
-// The figures of a run directory (SPEC §8), drawn from its files alone — summary.json,
+// The figures of a run directory (docs/outputs.md), drawn from its files alone — summary.json,
 // timeseries.csv, trajectories.csv, updates.csv, nodes.csv, snapshots.json, sensors.csv — so
 // that `masnet render` can restyle them without rerunning. What each figure shows:
 // docs/outputs.md.

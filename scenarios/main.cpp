@@ -1,4 +1,4 @@
-// The `masnet` command line (SPEC §7). Exit codes: 0 success, 2 bad input, 1 internal error.
+// The `masnet` command line (docs/scenario-reference.md). Exit codes: 0 success, 2 bad input, 1 internal error.
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>

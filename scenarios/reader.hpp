@@ -1,5 +1,5 @@
 #pragma once
-// Reading a YAML scenario with positions (STYLE habit 9): every value is read through a
+// Reading a YAML scenario with positions: every value is read through a
 // Section, which knows its dotted path and its file position, checks type and range, records
 // the resolved value (defaults included) for summary.json, and reports unknown keys with a
 // "did you mean" suggestion. Errors are collected, never thrown through the model.

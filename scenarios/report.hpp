@@ -1,5 +1,5 @@
 #pragma once
-// report.html: one self-contained page per run directory (SPEC §8) that opens offline —
+// report.html: one self-contained page per run directory (docs/outputs.md) that opens offline —
 // metadata, the resolved scenario, summary tables, the figures inlined as data URIs, a time
 // slider over the snapshots, and interactive time-series charts drawn by Chart.js, which is
 // read from Debian's libjs-chart.js at render time and inlined (never committed). Sections:

@@ -63,7 +63,7 @@ void Run::execute(const ProgressFn& progress) {
   traffic_fingerprint_ = world_->radio().traffic_fingerprint().hex();  // a pass over every node: once
   if (def_.baseline && def_.world.dispenser.enabled) {
     // The uncontrolled twin: same scenario and seed, dispensers off, so that with/without
-    // control always sit side by side (SPEC §6.2).
+    // control always sit side by side (docs/field-models.md).
     ScenarioDef twin = def_;
     twin.world.dispenser.enabled = false;
     twin.baseline = false;

@@ -1,6 +1,6 @@
 #pragma once
 // One run of a scenario: the simulator, the world and the recorder together, advanced in
-// chunks between sample times, and the run directory it writes (SPEC §8).
+// chunks between sample times, and the run directory it writes (docs/outputs.md).
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -24,7 +24,7 @@ class Run {
   /// Simulates the whole duration.
   void execute(const ProgressFn& progress = {});
 
-  /// summary.json: the stable keys of SPEC §8 and more.
+  /// summary.json: the keys of docs/outputs.md.
   nlohmann::json summary() const;
   /// Writes summary.json, nodes.csv, timeseries.csv, trajectories.csv, updates.csv and
   /// snapshots.json into the existing directory `dir`.

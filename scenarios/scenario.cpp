@@ -464,7 +464,7 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
                    top.peek("protocol"), top.peek("beacons"),         top.peek("output")};
   def.world.field = read_field(top.section("field"), def.world.domain);
   if (def.world.field.kind == FieldKind::acoustic && def.world.field.min_distance <= 0.0) {
-    // d_min = h/2 by default: half the sensor spacing removes the singularity (SPEC §6.1).
+    // d_min = h/2 by default: half the sensor spacing removes the singularity (docs/decisions/0002-acoustic-field.md).
     def.world.field.min_distance = layout.spacing > 0 ? 0.5 * layout.spacing : 0.01;
     reader.resolved()[nlohmann::json::json_pointer("/field/min_distance")] = def.world.field.min_distance;
   }

@@ -1,5 +1,5 @@
 #pragma once
-// A scenario file turned into definitions (STYLE habit 8): the loader fills the definition
+// A scenario file turned into definitions: the loader fills the definition
 // structs of the lower layers, reports every bad value as `file:line:col: message`, and
 // records the resolved scenario (defaults included) for summary.json. Every key is
 // documented in docs/scenario-reference.md.

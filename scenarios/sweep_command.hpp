@@ -1,6 +1,6 @@
 #pragma once
 // `masnet sweep SWEEP.yaml [--jobs N] [--out DIR] [--force] [--list] [--quiet] [--no-mpi]`
-// (SPEC §7, docs/sweeps.md). Runs spread over --jobs threads; launched under mpirun or srun
+// (docs/sweeps.md). Runs spread over --jobs threads; launched under mpirun or srun
 // (and built with MPI), also over the ranks, rank 0 writing every output.
 #include <string>
 

@@ -1,5 +1,5 @@
 #pragma once
-// Assertions for bugs (STYLE habit 9): kernel invariants such as "time never goes back"
+// Assertions for bugs: kernel invariants such as "time never goes back"
 // stay on in optimised test builds (MASNET_ASSERTIONS). User errors never come here; they
 // are reported at the scenarios/ boundary with a file position.
 #include <source_location>

@@ -1,6 +1,6 @@
 #pragma once
 // The work an event does: a small callable stored inline, so scheduling never allocates
-// (STYLE habit 4). Captures must be trivially copyable and at most kCapacity bytes: capture
+//. Captures must be trivially copyable and at most kCapacity bytes: capture
 // ids, indices and a pointer to the owning object, not containers.
 #include <cstddef>
 #include <cstring>

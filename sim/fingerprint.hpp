@@ -1,7 +1,7 @@
 #pragma once
 // A running hash of the ordered stream of executed events and the payload digests models
 // add while handling them. Two runs with the same fingerprint executed the same events at
-// the same times in the same order with the same digested payloads (STYLE habit 10).
+// the same times in the same order with the same digested payloads.
 #include <bit>
 #include <cstdint>
 #include <cstring>

@@ -1,5 +1,5 @@
 #pragma once
-// Identifiers that cross folders (STYLE habit 7): plain integers with a type, never pointers.
+// Identifiers that cross folders: plain integers with a type, never pointers.
 #include <cstdint>
 #include <functional>
 

@@ -1,6 +1,6 @@
 #pragma once
 // Seeded random streams keyed by (seed, node, purpose), so that adding a node or a draw in
-// one place never shifts another node's numbers (STYLE habit 10). The generator is
+// one place never shifts another node's numbers. The generator is
 // xoshiro256** and every distribution is written here from integer arithmetic and IEEE
 // operations, so the numbers are the same on every platform with the same libm.
 #include <cstdint>

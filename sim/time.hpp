@@ -1,5 +1,5 @@
 #pragma once
-// Simulated time: integer nanoseconds (STYLE habit 2). `double` seconds appear only in
+// Simulated time: integer nanoseconds. `double` seconds appear only in
 // formulas and files, converted at the edges with `seconds()` / `to_seconds()`.
 #include <chrono>
 #include <cmath>

@@ -160,7 +160,7 @@ TEST_CASE("initialisation sets R_i to the farthest reporting sensor, or R_min", 
   }
 }
 
-TEST_CASE("the seed's rule: R grows to 2d and stops on R >= 2d, where a strict test would loop",
+TEST_CASE("the paper's rule: R grows to 2d and stops on R >= 2d, where a strict test would loop",
           "[protocols]") {
   // Robot at the centre, a neighbour 0.4375 east, sensors 0.1875 east and 0.125 south
   // (binary fractions: every distance below is exact).

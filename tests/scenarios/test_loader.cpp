@@ -1,4 +1,4 @@
-// The scenario loader against bad input (SPEC §7): every file under malformed/ is checked with
+// The scenario loader against bad input (docs/scenario-reference.md): every file under malformed/ is checked with
 // `masnet validate` and `masnet run` as a subprocess, for its exact `file:line:col: message`
 // lines, exit code 2 and no run directory; overrides, seeds and resolved defaults in-process.
 #include <catch2/catch.hpp>
@@ -371,7 +371,7 @@ TEST_CASE("both example scenarios load without diagnostics", "[scenarios]") {
   CHECK(def.world.sensors.size() == 1600);
   CHECK(def.world.robots.size() == 9);
   CHECK(def.world.field.targets.size() == 2);
-  // min_distance: auto is h/2 with h = 1/40 (SPEC §6.1).
+  // min_distance: auto is h/2 with h = 1/40 (docs/decisions/0002-acoustic-field.md).
   CHECK(def.world.field.min_distance == Approx(1.0 / 80.0));
   CHECK(def.resolved["field"]["min_distance"].get<double>() == Approx(1.0 / 80.0));
   CHECK(def.output.snapshots == std::vector<double>{0, 1, 2, 3, 4, 5});
