@@ -2,7 +2,6 @@
 // Assertions for bugs: kernel invariants such as "time never goes back"
 // stay on in optimised test builds (MASNET_ASSERTIONS). User errors never come here; they
 // are reported at the scenarios/ boundary with a file position.
-#include <source_location>
 #include <stdexcept>
 #include <string>
 
@@ -18,8 +17,10 @@ struct AssertionFailure : std::logic_error {
 enum class AssertionMode { abort, throw_exception };
 void set_assertion_mode(AssertionMode mode);
 
+/// `file` and `line` come from __FILE__ and __LINE__: std::source_location is not available to
+/// clang 14 with libstdc++ 12 (the fuzz preset's compiler).
 [[noreturn]] void assertion_failed(const char* condition, const std::string& message,
-                                   std::source_location where);
+                                   const char* file, int line);
 
 }  // namespace masnet::sim
 
@@ -27,7 +28,7 @@ void set_assertion_mode(AssertionMode mode);
 #define MASNET_ASSERT(cond, message)                                               \
   do {                                                                             \
     if (!(cond)) [[unlikely]]                                                      \
-      ::masnet::sim::assertion_failed(#cond, (message), std::source_location::current()); \
+      ::masnet::sim::assertion_failed(#cond, (message), __FILE__, __LINE__);        \
   } while (false)
 #else
 #define MASNET_ASSERT(cond, message) \
