@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "scenarios/output_file.hpp"
+#include "sim/log.hpp"
 #include "sim/fingerprint.hpp"
 
 namespace masnet::scenarios {
@@ -22,6 +23,12 @@ Run::~Run() = default;
 std::uint64_t Run::events() const { return simulator_->events_run(); }
 std::string Run::fingerprint() const { return simulator_->fingerprint().hex(); }
 
+namespace {
+// Events between two progress calls while a chunk runs: a few microseconds of wall time each,
+// so the bar hears from the run many times a second at a negligible cost per event.
+constexpr std::uint64_t kProgressEveryEvents = 4096;
+}  // namespace
+
 void Run::execute(const ProgressFn& progress) {
   const auto wall_start = std::chrono::steady_clock::now();
   world_->start();
@@ -35,6 +42,13 @@ void Run::execute(const ProgressFn& progress) {
   std::sort(snapshots.begin(), snapshots.end());
   std::int64_t next_sample = 0, next_trajectory = 0;
   std::size_t next_snapshot = 0;
+  // Between checkpoints too (a large run may spend seconds of wall time in one chunk): the
+  // kernel calls back every few thousand events, and the callee decides from the wall clock
+  // whether to draw.
+  if (progress)
+    simulator_->set_progress_hook(kProgressEveryEvents, [&progress](sim::Time now, std::uint64_t events) {
+      progress(sim::to_seconds(now), events);
+    });
   for (;;) {
     const sim::Time t_sample = sim::kTimeZero + next_sample * sample;
     const sim::Time t_trajectory = sim::kTimeZero + next_trajectory * trajectory;
@@ -56,6 +70,7 @@ void Run::execute(const ProgressFn& progress) {
     if (progress) progress(sim::to_seconds(next), simulator_->events_run());
     if (next == end) break;
   }
+  simulator_->set_progress_hook(0, nullptr);
   // The final state is always sampled, whatever the period.
   if (recorder_->samples().empty() || recorder_->samples().back().t_s != def_.duration_s) recorder_->sample();
   if (def_.baseline && def_.world.dispenser.enabled) {
@@ -66,6 +81,7 @@ void Run::execute(const ProgressFn& progress) {
     twin.baseline = false;
     twin.output.snapshots.clear();
     Run baseline(twin);
+    sim::Log(*simulator_).info("the baseline twin (no dispensers) runs now; its clock starts again at 0");
     baseline.execute();
     recorder_->attach_baseline(baseline.recorder().samples());
     baseline_fingerprint_ = baseline.fingerprint();
