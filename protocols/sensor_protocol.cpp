@@ -10,12 +10,10 @@ void SensorProtocol::on_frame(SensorHost& host, SensorState& state, const net::F
       sense_source_ = frame.source;
       sense_number_ = frame.number;
     }
-    if (sense_cell_.contains(host.position())) {
-      const double reading = host.reading();
-      MASNET_LOG(log_, trace, "sensor {}: in the cell of robot {} update {}: answers {}", sim::index(host.id()),
-                 sim::index(sense->robot), sense->update, reading);
-      host.unicast(sense->robot, net::Reading{host.id(), sense->update, host.position(), reading});
-    }
+    // Not logged: this runs for every sensor that hears a SENSE, where even a level test
+    // costs a measurable share of a run (docs/logging.md).
+    if (sense_cell_.contains(host.position()))
+      host.unicast(sense->robot, net::Reading{host.id(), sense->update, host.position(), host.reading()});
   } else if (const auto* position = std::get_if<net::Position>(&frame.payload)) {
     // 2: each sensor finds its closest robot (ties: the lower id).
     const double d2 = (position->position - host.position()).squaredNorm();

@@ -24,7 +24,7 @@ class SensorProtocol {
   enum Timer : std::uint32_t { kReport = 1 };
 
   /// `report_delay_s`: how long a sensor listens for POSITIONs before it reports. `log` (may
-  /// be null) gets each report and each answered SENSE at trace level.
+  /// be null) gets each report at trace level.
   explicit SensorProtocol(double report_delay_s, const sim::Log* log = nullptr)
       : report_delay_s_(report_delay_s), log_(log) {}
 

@@ -37,9 +37,13 @@ std::string_view Log::level_name(spdlog::level::level_enum level) {
   }
 }
 
-void Log::start_line(fmt::memory_buffer& line, spdlog::level::level_enum level) const {
+void Log::write_line(spdlog::level::level_enum level, fmt::string_view format,
+                     fmt::format_args args) const {
+  fmt::memory_buffer line;
   fmt::format_to(std::back_inserter(line), "[t={:>15.9f} s] [{}] ", to_seconds(simulator_->now()),
                  level_name(level));
+  fmt::vformat_to(std::back_inserter(line), format, args);
+  logger_->log(level, spdlog::string_view_t(line.data(), line.size()));
 }
 
 CheckedFileSink::CheckedFileSink(const std::string& path) : path_(path) {

@@ -59,12 +59,12 @@ class Log {
   void write(spdlog::level::level_enum level, fmt::format_string<Args...> format,
              Args&&... args) const {
     if (!logger_->should_log(level)) return;
-    fmt::memory_buffer line;
-    start_line(line, level);
-    fmt::format_to(std::back_inserter(line), format, std::forward<Args>(args)...);
-    logger_->log(level, spdlog::string_view_t(line.data(), line.size()));
+    write_line(level, format, fmt::make_format_args(args...));
   }
-  void start_line(fmt::memory_buffer& line, spdlog::level::level_enum level) const;
+  // Out of line and cold: a caller's code holds only the level test and this call, not the
+  // formatting (which would bloat hot functions such as a sensor's frame handler).
+  [[gnu::cold]] void write_line(spdlog::level::level_enum level, fmt::string_view format,
+                                fmt::format_args args) const;
 
   const Simulator* simulator_;
   std::shared_ptr<spdlog::logger> logger_;
