@@ -20,7 +20,7 @@ void Simulator::set_progress_hook(std::uint64_t every_events,
                                   std::function<void(Time now, std::uint64_t events)> hook) {
   if (every_events == 0 || !hook) {
     hook_ = nullptr;
-    hook_period_ = 0;
+    hook_period_ = hook_countdown_ = kNoHook;
     return;
   }
   hook_ = std::move(hook);
@@ -28,7 +28,7 @@ void Simulator::set_progress_hook(std::uint64_t every_events,
   hook_countdown_ = every_events;
 }
 
-template <bool kBounded, bool kHooked>
+template <bool kBounded>
 std::uint64_t Simulator::run_loop(std::int64_t limit_ns) {
   const std::uint64_t before = events_run_;
   stop_requested_ = false;
@@ -46,23 +46,25 @@ std::uint64_t Simulator::run_loop(std::int64_t limit_ns) {
     ++events_run_;
     fingerprint_.mix(static_cast<std::uint64_t>(time_ns));
     action();
-    if (kHooked && --countdown == 0) [[unlikely]] {
+    // One decrement per event, hook or not: a second copy of the loop for runs with a hook
+    // made the compiler stop inlining the queue's pop (4 % more instructions in PHOLD).
+    if (--countdown == 0) [[unlikely]] {
       countdown = hook_period_;
-      if (hook_) hook_(now_, events_run_);  // an event may have removed it
+      if (hook_) hook_(now_, events_run_);  // without a hook: once in 2^64 events
     }
     if (stop_requested_) break;
   }
-  if (kHooked) hook_countdown_ = countdown;
+  hook_countdown_ = countdown;
   return events_run_ - before;
 }
 
 std::uint64_t Simulator::run_until(Time limit) {
   MASNET_ASSERT(limit >= now_, "run_until a time in the past");
-  const std::uint64_t ran = hook_ ? run_loop<true, true>(to_ns(limit)) : run_loop<true, false>(to_ns(limit));
+  const std::uint64_t ran = run_loop<true>(to_ns(limit));
   if (!stop_requested_) now_ = limit;
   return ran;
 }
 
-std::uint64_t Simulator::run() { return hook_ ? run_loop<false, true>(0) : run_loop<false, false>(0); }
+std::uint64_t Simulator::run() { return run_loop<false>(0); }
 
 }  // namespace masnet::sim

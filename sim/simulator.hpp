@@ -58,8 +58,8 @@ class Simulator {
 
   /// Calls `hook(now, events_run)` after every `every_events`-th event run (counted across
   /// run/run_until calls), e.g. to redraw a progress line while a long chunk runs. A generic
-  /// "every N events" hook: the kernel reads no clock. An empty hook (or 0) removes it; without
-  /// one the event loop carries no counter at all. A hook that only observes (reads a clock,
+  /// "every N events" hook: the kernel reads no clock. An empty hook (or 0) removes it. The
+  /// cost per event is one decrement of a counter in a register. A hook that only observes (reads a clock,
   /// draws) leaves the event stream and its fingerprint unchanged.
   void set_progress_hook(std::uint64_t every_events, std::function<void(Time now, std::uint64_t events)> hook);
 
@@ -67,7 +67,7 @@ class Simulator {
   void reserve(std::size_t n) { queue_.reserve(n); }
 
  private:
-  template <bool kBounded, bool kHooked>
+  template <bool kBounded>
   std::uint64_t run_loop(std::int64_t limit_ns);
 
   Time now_ = kTimeZero;
@@ -75,8 +75,9 @@ class Simulator {
   std::size_t cancelled_pending_ = 0;
   bool stop_requested_ = false;
   std::function<void(Time, std::uint64_t)> hook_;
-  std::uint64_t hook_period_ = 0;
-  std::uint64_t hook_countdown_ = 0;  // events until the next call
+  static constexpr std::uint64_t kNoHook = ~std::uint64_t{0};
+  std::uint64_t hook_period_ = kNoHook;
+  std::uint64_t hook_countdown_ = kNoHook;  // events until the next call
   EventQueue queue_;
   Fingerprint fingerprint_;
 };
