@@ -116,7 +116,7 @@ TEST_CASE("A debug log follows one robot's update from start through growth to e
   CHECK(followed);
 }
 
-TEST_CASE("Without a log file the log goes to stderr, never to stdout; level off logs nothing",
+TEST_CASE("Without a log file the log goes to stderr, never to stdout, and level off logs nothing",
           "[scenarios]") {
   Folder to_stderr("stderr"), off("off");
   const Result debug = masnet_run(to_stderr.path, "--log-level debug");
