@@ -36,7 +36,7 @@ class World::RobotAgent final : public protocols::RobotHost {
       : world_(world),
         index_(index),
         segment_(world.def_.motion, 0.0, MotionState{start, Vec2{0, 0}}, start),
-        protocol_(*this, world.def_.protocol, world.protocol_context_, phase_s) {}
+        protocol_(*this, world.def_.protocol, world.protocol_context_, phase_s, &world.log_) {}
 
   protocols::VoronoiProtocol& protocol() { return protocol_; }
   const protocols::VoronoiProtocol& protocol() const { return protocol_; }
@@ -134,12 +134,13 @@ class World::SensorContext final : public protocols::SensorHost {
 
 World::World(sim::Simulator& simulator, const WorldDef& def)
     : simulator_(simulator),
+      log_(simulator),
       def_(def),
       radio_(simulator, def.radio, def.seed),
       field_(def.field),
       protocol_context_{def.domain, def.scaling, def.radio.max_range},
       // Sensors listen for POSITIONs one reply timeout before they report (§III-B step 2-3).
-      sensor_protocol_(def.protocol.reply_timeout_s) {
+      sensor_protocol_(def.protocol.reply_timeout_s, &log_) {
   radio_.set_listener(this);
   radio_.set_mobile_positions(this);
   robots_.reserve(def_.robots.size());

@@ -15,6 +15,7 @@
 #include "net/radio.hpp"
 #include "protocols/sensor_protocol.hpp"
 #include "protocols/voronoi_protocol.hpp"
+#include "sim/log.hpp"
 #include "sim/simulator.hpp"
 
 namespace masnet::agents {
@@ -140,6 +141,7 @@ class World final : public net::RadioListener, public net::MobilePositions {
   double field_value(const Vec2& s);
 
   sim::Simulator& simulator_;
+  sim::Log log_;  // spdlog's default logger: the command line sets its level and sink
   WorldDef def_;
   net::Radio radio_;
   AnalyticField field_;

@@ -9,6 +9,7 @@
 
 #include "protocols/geometry.hpp"
 #include "protocols/host.hpp"
+#include "sim/log.hpp"
 
 namespace masnet::protocols {
 
@@ -22,14 +23,17 @@ class SensorProtocol {
  public:
   enum Timer : std::uint32_t { kReport = 1 };
 
-  /// `report_delay_s`: how long a sensor listens for POSITIONs before it reports.
-  explicit SensorProtocol(double report_delay_s) : report_delay_s_(report_delay_s) {}
+  /// `report_delay_s`: how long a sensor listens for POSITIONs before it reports. `log` (may
+  /// be null) gets each report at trace level.
+  explicit SensorProtocol(double report_delay_s, const sim::Log* log = nullptr)
+      : report_delay_s_(report_delay_s), log_(log) {}
 
   void on_frame(SensorHost& host, SensorState& state, const net::Frame& frame) const;
   void on_timer(SensorHost& host, SensorState& state, std::uint32_t kind) const;
 
  private:
   double report_delay_s_;
+  const sim::Log* log_;
   // A SENSE reaches its hearers one after another: its cell is prepared once for all of them
   // (the answers are contains()'s). Keyed by the frame's name, (source, number).
   mutable ConvexMembership sense_cell_;

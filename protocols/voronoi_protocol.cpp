@@ -3,11 +3,21 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/ranges.h>
+
 namespace masnet::protocols {
+namespace {
+std::uint32_t number(NodeId node) { return sim::index(node); }
+std::string node_list(const std::vector<NodeId>& nodes) {
+  std::vector<std::uint32_t> numbers;
+  for (NodeId node : nodes) numbers.push_back(number(node));
+  return fmt::format("[{}]", fmt::join(numbers, ", "));
+}
+}  // namespace
 
 VoronoiProtocol::VoronoiProtocol(RobotHost& host, const ProtocolParams& params,
-                                 const ProtocolContext& context, double phase_s)
-    : host_(host), params_(params), context_(context), phase_s_(phase_s) {
+                                 const ProtocolContext& context, double phase_s, const sim::Log* log)
+    : host_(host), params_(params), context_(context), phase_s_(phase_s), log_(log) {
   switch (params_.kind) {
     case ProtocolKind::fixed_radius: radius_m_ = std::min(params_.fixed_radius, context_.max_range); break;
     case ProtocolKind::gabriel: radius_m_ = context_.max_range; break;
@@ -42,6 +52,8 @@ void VoronoiProtocol::on_report(const net::Report& report, std::uint32_t) {
 void VoronoiProtocol::finish_initialisation() {
   // 6: R_i = ‖p_i − s_j‖ for the farthest reporter j (R_min if nobody reported).
   radius_m_ = std::max(farthest_reporter_m_, params_.decay.min);
+  MASNET_LOG(log_, debug, "robot {} initialised: R {} (farthest reporting sensor {})", number(host_.id()),
+             radius_m_, farthest_reporter_m_);
   phase_ = Phase::idle;
   schedule_ticks();
 }
@@ -55,6 +67,8 @@ void VoronoiProtocol::on_tick() {
   if (phase_ != Phase::idle) {  // still busy with the previous update: this one waits
     tick_pending_ = true;
     ++delayed_updates_;
+    MASNET_LOG(log_, debug, "robot {} update {}: still running at the next tick, the next update waits",
+               number(host_.id()), update_);
     return;
   }
   begin_update();
@@ -69,6 +83,8 @@ void VoronoiProtocol::begin_update() {
   tick_pending_ = false;
   position_ = host_.position();
   record_.position = position_;
+  MASNET_LOG(log_, debug, "robot {} update {}: start at ({}, {}), R {}{}", number(host_.id()), update_,
+             position_.x(), position_.y(), radius_m_, record_.delayed ? " (delayed)" : "");
   neighbours_.clear();
   readings_.clear();
   sensed_cell_.clear();
@@ -93,6 +109,8 @@ void VoronoiProtocol::end_round() {
   // 2) construct V_i from the replies (bisectors within Ω; the disk B(p_i, R_i) is applied
   //    through the sensing range and the distance rule of decide()).
   cell_ = compute_cell();
+  MASNET_LOG(log_, debug, "robot {} update {}: round {} timed out after {} s with {} neighbours heard",
+             number(host_.id()), update_, record_.rounds, params_.reply_timeout_s, neighbours_.size());
   if (record_.rounds > 1) {
     decide();
     return;
@@ -122,16 +140,23 @@ void VoronoiProtocol::decide() {
   // 4) If R_i >= 2 d_i, stop (the paper's strict '>' never stops after R_i = 2 d_i; see
   //    docs/decisions/0001-stop-rule.md). Otherwise grow R_i and go to step 1.
   if (radius_m_ >= 2.0 * farthest_m) {
+    MASNET_LOG(log_, debug, "robot {} update {}: R {} >= 2 x {}: stop", number(host_.id()), update_, radius_m_,
+               farthest_m);
     if (params_.shrink_on_stop) radius_m_ = std::max(2.0 * farthest_m, params_.decay.min);
     finish_update(false);
     return;
   }
   if (radius_m_ >= context_.max_range) {  // cannot grow any more: the cell is truncated
+    MASNET_LOG(log_, debug, "robot {} update {}: R {} is the max range and {} < 2 x {}: cell truncated",
+               number(host_.id()), update_, radius_m_, radius_m_, farthest_m);
     finish_update(true);
     return;
   }
+  const double grown_from = radius_m_;
   radius_m_ = params_.growth == Growth::to_2d ? 2.0 * farthest_m : 2.0 * radius_m_;
   radius_m_ = std::min(radius_m_, context_.max_range);
+  MASNET_LOG(log_, debug, "robot {} update {}: R {} -> {} (farthest {} {})", number(host_.id()), update_,
+             grown_from, radius_m_, params_.criterion == StopCriterion::sensors ? "sensor" : "vertex", farthest_m);
   discover_round();
 }
 
@@ -161,6 +186,7 @@ void VoronoiProtocol::finish_update(bool truncated) {
   record_.centroid = last_target_;
   record_.finished = host_.now();
   last_cell_ = record_.cell;
+  log_update_end();
   if (params_.kind == ProtocolKind::radius_doubling) decay_range();
   phase_ = Phase::idle;
   host_.update_finished(record_);
@@ -173,7 +199,10 @@ void VoronoiProtocol::decay_range() {
   unchanged_streak_ = radius_m_ == last_final_radius_ ? unchanged_streak_ + 1 : 1;
   last_final_radius_ = radius_m_;
   if (unchanged_streak_ >= params_.decay.patience) {
+    const double before = radius_m_;
     radius_m_ = std::max(radius_m_ - params_.decay.step, params_.decay.min);
+    MASNET_LOG(log_, debug, "robot {} update {}: R unchanged for {} updates, decays {} -> {}", number(host_.id()),
+               update_, params_.decay.patience, before, radius_m_);
     unchanged_streak_ = 0;
   }
 }
@@ -194,7 +223,17 @@ void VoronoiProtocol::run_oracle_update() {
   record_.centroid = last_target_;
   record_.finished = host_.now();
   last_cell_ = record_.cell;
+  log_update_end();
   host_.update_finished(record_);
+}
+
+void VoronoiProtocol::log_update_end() const {
+  MASNET_LOG(log_, debug,
+             "robot {} update {}: end after {} rounds, R {}{}, {} neighbours {}, {} readings, centroid ({}, {}){}",
+             number(record_.robot), record_.update, record_.rounds, record_.radius,
+             record_.truncated ? " (truncated)" : "", record_.neighbours.size(),
+             node_list(record_.neighbours), record_.readings,
+             record_.centroid.x(), record_.centroid.y(), record_.no_mass ? " (no mass: target kept)" : "");
 }
 
 // ---- Messages and timers --------------------------------------------------------------------
@@ -203,7 +242,11 @@ void VoronoiProtocol::on_frame(const net::Frame& frame) {
   if (const auto* discover = std::get_if<net::Discover>(&frame.payload)) {
     answer_discover(*discover);
   } else if (const auto* neighbour = std::get_if<net::Neighbor>(&frame.payload)) {
-    if (phase_ != Phase::discovering && phase_ != Phase::sensing) return;  // late reply
+    if (phase_ != Phase::discovering && phase_ != Phase::sensing) {  // late reply
+      MASNET_LOG(log_, debug, "robot {}: ignored a late NEIGHBOR from robot {} (no update running)",
+                 number(host_.id()), number(neighbour->robot));
+      return;
+    }
     count(net::MessageType::neighbor, frame.size_bytes);
     // A neighbour is taken at the position of its first reply in this update: later replies
     // (from later rounds) would move the bisectors under the stop rule, and with R ← 2d — no
@@ -212,7 +255,11 @@ void VoronoiProtocol::on_frame(const net::Frame& frame) {
                                    [&](const HeardNeighbour& n) { return n.robot == neighbour->robot; });
     if (!known) neighbours_.push_back({neighbour->robot, neighbour->position});
   } else if (const auto* reading = std::get_if<net::Reading>(&frame.payload)) {
-    if (phase_ == Phase::idle || phase_ == Phase::initialising || reading->update != update_) return;
+    if (phase_ == Phase::idle || phase_ == Phase::initialising || reading->update != update_) {
+      MASNET_LOG(log_, debug, "robot {} update {}: ignored a stale READING from sensor {} (for update {})",
+                 number(host_.id()), update_, number(reading->sensor), reading->update);
+      return;
+    }
     count(net::MessageType::reading, frame.size_bytes);
     readings_.push_back({reading->sensor, reading->position, reading->reading});
   } else if (const auto* report = std::get_if<net::Report>(&frame.payload)) {
@@ -230,7 +277,11 @@ void VoronoiProtocol::on_timer(std::uint32_t kind) {
     case kInitEnd: finish_initialisation(); break;
     case kTick: on_tick(); break;
     case kRoundEnd: end_round(); break;
-    case kSenseEnd: decide(); break;
+    case kSenseEnd:
+      MASNET_LOG(log_, debug, "robot {} update {}: SENSE timed out after {} s with {} readings",
+                 number(host_.id()), update_, params_.reply_timeout_s, readings_.size());
+      decide();
+      break;
     default: break;
   }
 }

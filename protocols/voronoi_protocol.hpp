@@ -13,6 +13,7 @@
 #include "protocols/density_scaling.hpp"
 #include "protocols/geometry.hpp"
 #include "protocols/host.hpp"
+#include "sim/log.hpp"
 
 namespace masnet::protocols {
 
@@ -60,8 +61,9 @@ class VoronoiProtocol {
   enum Timer : std::uint32_t { kInitEnd = 1, kTick, kRoundEnd, kSenseEnd };
 
   /// `phase_s` in [0, period) staggers this robot's updates (seeded per robot by the world).
+  /// `log` (may be null) gets the update's steps at debug level (docs/logging.md).
   VoronoiProtocol(RobotHost& host, const ProtocolParams& params, const ProtocolContext& context,
-                  double phase_s);
+                  double phase_s, const sim::Log* log = nullptr);
 
   /// Starts at time now(): the initialisation of paper §III-B, then periodic updates.
   void start();
@@ -101,6 +103,7 @@ class VoronoiProtocol {
   void decide();                    // steps 3-4: d_i, then stop or grow R_i
   void finish_update(bool truncated);
   void decay_range();
+  void log_update_end() const;
   void run_oracle_update();
 
   void answer_discover(const net::Discover& discover);
@@ -114,6 +117,7 @@ class VoronoiProtocol {
   ProtocolParams params_;
   ProtocolContext context_;
   double phase_s_;
+  const sim::Log* log_;
 
   Phase phase_ = Phase::idle;
   double radius_m_;                  // R_i, carried over between updates

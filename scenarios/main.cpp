@@ -1,4 +1,6 @@
-// The `masnet` command line (docs/scenario-reference.md). Exit codes: 0 success, 2 bad input, 1 internal error.
+// The `masnet` command line (docs/scenario-reference.md, docs/outputs.md). Exit codes: 0 success,
+// 2 bad input, 1 internal error or a failed write.
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
@@ -9,6 +11,7 @@
 #include <optional>
 
 #include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include "scenarios/figures.hpp"
@@ -20,6 +23,7 @@
 #include "scenarios/scenario.hpp"
 #include "scenarios/sweep_command.hpp"
 #include "sim/cpus.hpp"
+#include "sim/log.hpp"
 
 using namespace masnet::scenarios;
 
@@ -48,6 +52,8 @@ struct RunArgs {
   bool force = false;
   bool quiet = false;
   bool baseline = false;
+  std::string log_level = "warn";
+  std::string log_file;
 };
 
 // --seed takes the same range as the scenario's `seed` key: 0 … 2^63 − 1.
@@ -73,6 +79,61 @@ bool overhearing_thread_wanted() {
   return masnet::sim::allowed_cpu_count() >= 2;
 }
 
+// ---- Logging (docs/logging.md) ----------------------------------------------------------------
+
+const std::vector<std::string> kLogLevels{"trace", "debug", "info", "warn", "error", "off"};
+
+/// Where the log goes: stderr (never stdout, which carries the summary lines) unless a file
+/// was named. Nothing is logged below warn today, so the default leaves the terminal as it was.
+struct Logging {
+  std::shared_ptr<masnet::sim::CheckedFileSink> file;  // null: stderr
+  bool shows_on_terminal = false;                       // lines may land on stderr
+};
+
+std::shared_ptr<spdlog::logger> make_logger(spdlog::sink_ptr sink, spdlog::level::level_enum level) {
+  auto logger = std::make_shared<spdlog::logger>("masnet", std::move(sink));
+  logger->set_pattern("%v");  // sim::Log writes the simulated-time prefix and the level itself
+  logger->set_level(level);
+  logger->flush_on(spdlog::level::warn);
+  return logger;
+}
+
+/// Every command: the default logger writes to stderr at warn.
+void log_to_stderr() {
+  spdlog::set_default_logger(make_logger(std::make_shared<spdlog::sinks::stderr_sink_mt>(), spdlog::level::warn));
+}
+
+/// `masnet run`'s --log-level and --log-file. The file is opened (created, or appended to)
+/// before anything is simulated; an empty string means done, otherwise the reason it failed.
+std::string set_up_run_logging(const RunArgs& args, const std::string& out, Logging& logging) {
+  const spdlog::level::level_enum level = args.log_level == "error" ? spdlog::level::err
+                                          : args.log_level == "warn" ? spdlog::level::warn
+                                                                     : spdlog::level::from_str(args.log_level);
+  if (args.log_file.empty()) {
+    spdlog::default_logger()->set_level(level);
+    logging.shows_on_terminal = level < spdlog::level::warn;
+    return {};
+  }
+  std::error_code ec;
+  if (std::filesystem::is_directory(args.log_file, ec))
+    return "cannot open the log file '" + args.log_file + "': it is a directory";
+  // The run directory is replaced as a whole at the end: a log inside it would be lost.
+  std::error_code log_ec, run_ec;
+  const std::filesystem::path log_path =
+      std::filesystem::weakly_canonical(std::filesystem::absolute(args.log_file), log_ec);
+  const std::filesystem::path run_dir = std::filesystem::weakly_canonical(normalised_directory(out), run_ec);
+  if (!log_ec && !run_ec && std::mismatch(run_dir.begin(), run_dir.end(), log_path.begin(), log_path.end()).first == run_dir.end())
+    return "the log file '" + args.log_file + "' cannot be inside the run directory '" + run_dir.string() +
+           "', which is replaced at the end of the run";
+  try {
+    logging.file = std::make_shared<masnet::sim::CheckedFileSink>(args.log_file);
+  } catch (const std::system_error& e) {
+    return "cannot open the log file '" + args.log_file + "': " + e.code().message();
+  }
+  spdlog::set_default_logger(make_logger(logging.file, level));
+  return {};
+}
+
 int command_run(const RunArgs& args) {
   std::optional<std::uint64_t> seed;
   if (!args.seed.empty() || args.seed_given) {
@@ -93,6 +154,11 @@ int command_run(const RunArgs& args) {
     std::fprintf(stderr, "masnet run: %s\n", problem.c_str());
     return kBadInput;
   }
+  Logging logging;
+  if (std::string problem = set_up_run_logging(args, out, logging); !problem.empty()) {
+    std::fprintf(stderr, "masnet run: %s\n", problem.c_str());
+    return kBadInput;
+  }
   // A lone run may use a second core for the radio's overhearing bookkeeping (the same results;
   // sweeps keep their cores for whole runs) when the process may run on two processors: pinned
   // to one (taskset, a cpuset), the two threads would only take turns.
@@ -100,7 +166,8 @@ int command_run(const RunArgs& args) {
   run_def.world.radio.overhearing_thread = overhearing_thread_wanted();
   Run run(run_def);
   {
-    ProgressBar bar(def.duration_s, !args.quiet && ProgressBar::stderr_is_terminal());
+    // Log lines on the terminal would break into the progress line: one or the other.
+    ProgressBar bar(def.duration_s, !args.quiet && !logging.shows_on_terminal && ProgressBar::stderr_is_terminal());
     run.execute([&](double t, std::uint64_t events) { bar.update(t, events); });
   }
   // Figures and report are drawn into the staging folder too, so the published directory is
@@ -146,6 +213,12 @@ int command_run(const RunArgs& args) {
                 static_cast<unsigned long long>(run.events()), run.fingerprint().c_str(),
                 run.traffic_fingerprint().c_str());
     std::printf("run directory: %s\n", normalised_directory(out).string().c_str());
+  }
+  if (logging.file) {
+    if (std::string problem = logging.file->error(); !problem.empty()) {
+      std::fprintf(stderr, "masnet: the log file is incomplete: %s\n", problem.c_str());
+      return kInternalError;
+    }
   }
   if (!render_error.empty()) {
     std::fprintf(stderr,
@@ -222,6 +295,11 @@ int main(int argc, char** argv) {
   run->add_flag("--quiet", run_args.quiet, "no progress and no summary line");
   run->add_flag("--baseline", run_args.baseline,
                 "diffusion runs: also run without dispensers and report both (control.baseline)");
+  run->add_option("--log-level", run_args.log_level,
+                  "protocol log on stderr (or --log-file): trace, debug, info, warn, error or off")
+      ->check(CLI::IsMember(kLogLevels))
+      ->default_str("warn");
+  run->add_option("--log-file", run_args.log_file, "write the log to this file (appended to) instead of stderr");
 
   std::string validate_file;
   std::vector<std::string> validate_sets;
@@ -250,7 +328,7 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : kBadInput;
   }
   run_args.seed_given = seed_option->count() > 0;
-  spdlog::set_pattern("%v");
+  log_to_stderr();
   try {
     if (*run) return command_run(run_args);
     if (*validate) return command_validate(validate_file, validate_sets);

@@ -1,6 +1,9 @@
 #pragma once
-// A progress line for long runs on a terminal (stderr): simulated time, events per second and
-// an ETA. Silent when stderr is not a terminal or with --quiet.
+// A progress line for long runs on a terminal (stderr): share done, simulated time, events per
+// second and an ETA. Silent when stderr is not a terminal or with --quiet. It is told the
+// progress often (the simulator calls back every few thousand events, docs/logging.md) and
+// decides from the wall clock when to draw: not before the run has lasted half a second, then
+// at most four times a second.
 #include <chrono>
 #include <cstdint>
 #include <string>
@@ -13,11 +16,14 @@ class ProgressBar {
   ProgressBar(double total_s, bool enabled);
   ~ProgressBar();
   void update(double t_s, std::uint64_t events);
+  /// Clears the line (also done by the destructor).
   void finish();
   /// True when stderr is a terminal.
   static bool stderr_is_terminal();
-  /// The text of one line (tests).
+  /// The text of one line (tests). `eta_s` < 0: not known yet.
   static std::string line(double t_s, double total_s, double events_per_s, double eta_s, int width);
+  /// A duration as "mm:ss", or "h:mm:ss" from an hour on (rounded to the second).
+  static std::string clock_text(double seconds);
 
  private:
   double total_s_;

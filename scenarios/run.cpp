@@ -5,6 +5,7 @@
 
 #include "scenarios/output_file.hpp"
 #include "scenarios/run_warnings.hpp"
+#include "sim/log.hpp"
 #include "sim/fingerprint.hpp"
 
 namespace masnet::scenarios {
@@ -24,6 +25,12 @@ std::uint64_t Run::events() const { return simulator_->events_run(); }
 std::string Run::fingerprint() const { return simulator_->fingerprint().hex(); }
 std::string Run::traffic_fingerprint() const { return traffic_fingerprint_; }
 
+namespace {
+// Events between two progress calls while a chunk runs: a few microseconds of wall time each,
+// so the bar hears from the run many times a second at a negligible cost per event.
+constexpr std::uint64_t kProgressEveryEvents = 4096;
+}  // namespace
+
 void Run::execute(const ProgressFn& progress) {
   const auto wall_start = std::chrono::steady_clock::now();
   world_->start();
@@ -37,6 +44,13 @@ void Run::execute(const ProgressFn& progress) {
   std::sort(snapshots.begin(), snapshots.end());
   std::int64_t next_sample = 0, next_trajectory = 0;
   std::size_t next_snapshot = 0;
+  // Between checkpoints too (a large run may spend seconds of wall time in one chunk): the
+  // kernel calls back every few thousand events, and the callee decides from the wall clock
+  // whether to draw.
+  if (progress)
+    simulator_->set_progress_hook(kProgressEveryEvents, [&progress](sim::Time now, std::uint64_t events) {
+      progress(sim::to_seconds(now), events);
+    });
   for (;;) {
     const sim::Time t_sample = sim::kTimeZero + next_sample * sample;
     const sim::Time t_trajectory = sim::kTimeZero + next_trajectory * trajectory;
@@ -58,6 +72,7 @@ void Run::execute(const ProgressFn& progress) {
     if (progress) progress(sim::to_seconds(next), simulator_->events_run());
     if (next == end) break;
   }
+  simulator_->set_progress_hook(0, nullptr);
   // The final state is always sampled, whatever the period.
   if (recorder_->samples().empty() || recorder_->samples().back().t_s != def_.duration_s) recorder_->sample();
   traffic_fingerprint_ = world_->radio().traffic_fingerprint().hex();  // a pass over every node: once
@@ -69,6 +84,7 @@ void Run::execute(const ProgressFn& progress) {
     twin.baseline = false;
     twin.output.snapshots.clear();
     Run baseline(twin);
+    sim::Log(*simulator_).info("the baseline twin (no dispensers) runs now; its clock starts again at 0");
     baseline.execute();
     recorder_->attach_baseline(baseline.recorder().samples());
     baseline_fingerprint_ = baseline.fingerprint();

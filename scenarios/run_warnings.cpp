@@ -26,7 +26,11 @@ std::vector<std::string> run_warnings(const nlohmann::json& summary, double loss
       loss_probability > 0 ? fmt::format(" (radio.loss is {:g})", loss_probability) : std::string();
   if (updates > 0) {
     const double correctness = number(protocol, "cell_correctness");
-    if (correctness < kLowCorrectness)
+    // Without loss, a low figure with every heard cell right is robots moving during their
+    // updates (the first instants of a run from a grid): no degradation. Loss, or cells wrong
+    // even for what the robots heard, is.
+    const double heard = protocol.contains("cell_correctness_heard") ? number(protocol, "cell_correctness_heard") : 0.0;
+    if (correctness < kLowCorrectness && (loss_probability > 0 || heard < 0.9))
       warnings.push_back(fmt::format(
           "only {:.1f} % of the updates built the robot's true Voronoi cell (cell correctness {:.3f}){}: "
           "the protocol's cells, costs and figures describe a degraded run",

@@ -57,7 +57,7 @@ bool apply_override(YAML::Node& root, const std::string& text, std::vector<Overr
   try {
     value = YAML::Load(text.substr(eq + 1));
   } catch (const YAML::Exception& e) {
-    diagnostics.push_back({where, "value is not valid YAML: " + e.msg});
+    diagnostics.push_back({where, "value is not valid YAML: " + shown_text(e.msg)});
     return false;
   }
   if (!root.IsMap()) root = YAML::Node(YAML::NodeType::Map);
@@ -401,7 +401,7 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
   } catch (const YAML::ParserException& e) {
     result.diagnostics.push_back({file_name + ":" + std::to_string(e.mark.line + 1) + ":" +
                                       std::to_string(e.mark.column + 1),
-                                  "YAML syntax error: " + e.msg});
+                                  "YAML syntax error: " + shown_text(e.msg)});
     return result;
   }
   if (overrides.empty() && (!root.IsDefined() || root.IsNull())) {

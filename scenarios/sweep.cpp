@@ -602,7 +602,7 @@ SweepLoad SweepParser::parse(const std::string& text) {
   } catch (const YAML::ParserException& e) {
     result.diagnostics.push_back(
         {file_ + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1),
-         "YAML syntax error: " + e.msg});
+         "YAML syntax error: " + shown_text(e.msg)});
     return result;
   }
   if (!root.IsMap()) {

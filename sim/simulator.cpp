@@ -16,10 +16,23 @@ bool Simulator::cancel(EventId id) {
   return true;
 }
 
+void Simulator::set_progress_hook(std::uint64_t every_events,
+                                  std::function<void(Time now, std::uint64_t events)> hook) {
+  if (every_events == 0 || !hook) {
+    hook_ = nullptr;
+    hook_period_ = hook_countdown_ = kNoHook;
+    return;
+  }
+  hook_ = std::move(hook);
+  hook_period_ = every_events;
+  hook_countdown_ = every_events;
+}
+
 template <bool kBounded>
 std::uint64_t Simulator::run_loop(std::int64_t limit_ns) {
   const std::uint64_t before = events_run_;
   stop_requested_ = false;
+  std::uint64_t countdown = hook_countdown_;  // a local: the loop keeps it in a register
   EventAction action;
   while (!queue_.empty()) {
     if (kBounded && queue_.first_time() > limit_ns) break;
@@ -33,8 +46,15 @@ std::uint64_t Simulator::run_loop(std::int64_t limit_ns) {
     ++events_run_;
     fingerprint_.mix(static_cast<std::uint64_t>(time_ns));
     action();
+    // One decrement per event, hook or not: a second copy of the loop for runs with a hook
+    // made the compiler stop inlining the queue's pop (4 % more instructions in PHOLD).
+    if (--countdown == 0) [[unlikely]] {
+      countdown = hook_period_;
+      if (hook_) hook_(now_, events_run_);  // without a hook: once in 2^64 events
+    }
     if (stop_requested_) break;
   }
+  hook_countdown_ = countdown;
   return events_run_ - before;
 }
 

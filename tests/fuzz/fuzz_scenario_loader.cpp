@@ -117,8 +117,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const masnet::fuzz::FuzzInput input =
       masnet::fuzz::split_fuzz_input({reinterpret_cast<const char*>(data), size});
   masnet::scenarios::LoadResult result;
+  // As `masnet validate` loads: sensors counted, not built (a 10^7 grid is legal but takes
+  // seconds under the sanitizers), and no input may raise the limits (limits.allow_huge).
+  masnet::scenarios::LoadOptions options;
+  options.build_sensors = false;
+  options.allow_huge = false;
   try {
-    result = masnet::scenarios::load_scenario_text(input.yaml_text, kFileName, input.overrides);
+    result = masnet::scenarios::load_scenario_text(input.yaml_text, kFileName, input.overrides, std::nullopt,
+                                                   options);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "  %s\n", e.what());
     fail("load_scenario_text threw (it promises diagnostics instead)", nullptr);

@@ -7,9 +7,22 @@ using masnet::scenarios::ProgressBar;
 TEST_CASE("The progress line shows a bar, the share done, simulated time, speed and ETA",
           "[scenarios]") {
   CHECK(ProgressBar::line(2.5, 5.0, 1.5e6, 10.0, 10) ==
-        "[#####     ]  50.0%  t = 2.500 / 5.000 s  1.50 M events/s  ETA 10 s");
-  CHECK(ProgressBar::line(0.0, 5.0, 0.0, 0.0, 4) ==
-        "[    ]   0.0%  t = 0.000 / 5.000 s  0.00 M events/s  ETA 0 s");
+        "[#####     ]  50.0%  t = 2.500 / 5.000 s  1.50 M events/s  ETA 00:10");
+  // Nothing simulated yet: no rate to extrapolate from.
+  CHECK(ProgressBar::line(0.0, 5.0, 0.0, -1.0, 4) ==
+        "[    ]   0.0%  t = 0.000 / 5.000 s  0.00 M events/s  ETA --:--");
+}
+
+TEST_CASE("The ETA reads mm:ss below an hour and h:mm:ss from an hour on, to the second",
+          "[scenarios]") {
+  CHECK(ProgressBar::clock_text(0.0) == "00:00");
+  CHECK(ProgressBar::clock_text(0.4) == "00:00");
+  CHECK(ProgressBar::clock_text(59.6) == "01:00");
+  CHECK(ProgressBar::clock_text(754.0) == "12:34");
+  CHECK(ProgressBar::clock_text(3599.4) == "59:59");
+  CHECK(ProgressBar::clock_text(3600.0) == "1:00:00");
+  CHECK(ProgressBar::clock_text(37230.0) == "10:20:30");
+  CHECK(ProgressBar::line(1.0, 4.0, 1e6, 4000.0, 4).substr(53) == "ETA 1:06:40");
 }
 
 TEST_CASE("The progress bar rounds to the nearest cell and keeps its width", "[scenarios]") {
