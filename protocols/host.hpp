@@ -25,6 +25,12 @@ struct MessageTally {
   std::uint64_t count = 0, bytes = 0;
 };
 
+/// A robot as one update heard it: its position as carried by the NEIGHBOR reply the update used.
+struct HeardRobot {
+  NodeId robot = sim::kNoNode;
+  Vec2 position{0, 0};
+};
+
 /// What one Voronoi update did (SPEC §5.4). Recorders judge it (e.g. cell correctness).
 struct UpdateRecord {
   NodeId robot = sim::kNoNode;
@@ -38,6 +44,9 @@ struct UpdateRecord {
   Vec2 position{0, 0};        ///< the robot's position the cell was computed for
   ConvexPolygon cell;         ///< the cell the robot computed
   std::vector<NodeId> neighbours;  ///< robots whose bisectors bound the cell, ascending
+  /// Every robot whose reply the cell was computed from, at the position its reply carried (in
+  /// the order heard); the oracle protocol leaves it empty.
+  std::vector<HeardRobot> heard;
   Vec2 centroid{0, 0};        ///< the new target (or the kept one)
   std::uint32_t readings = 0; ///< readings inside the cell used for the centroid
   std::array<MessageTally, net::kMessageTypeCount> messages{};
