@@ -31,8 +31,8 @@ struct HeardRobot {
   Vec2 position{0, 0};
 };
 
-/// What one Voronoi update did (SPEC §5.4). Recorders judge it (e.g. cell correctness).
-struct UpdateRecord {
+/// What one Voronoi update did (SPEC §5.4): the part recorders keep.
+struct UpdateSummary {
   NodeId robot = sim::kNoNode;
   std::uint32_t update = 0;   ///< the robot's update counter, from 1
   sim::Time started{}, finished{};
@@ -44,12 +44,17 @@ struct UpdateRecord {
   Vec2 position{0, 0};        ///< the robot's position the cell was computed for
   ConvexPolygon cell;         ///< the cell the robot computed
   std::vector<NodeId> neighbours;  ///< robots whose bisectors bound the cell, ascending
-  /// Every robot whose reply the cell was computed from, at the position its reply carried (in
-  /// the order heard); the oracle protocol leaves it empty.
-  std::vector<HeardRobot> heard;
   Vec2 centroid{0, 0};        ///< the new target (or the kept one)
   std::uint32_t readings = 0; ///< readings inside the cell used for the centroid
   std::array<MessageTally, net::kMessageTypeCount> messages{};
+};
+
+/// An update as the robot reports it. Recorders judge it (e.g. cell correctness) and keep the
+/// summary: the robots heard are judged, not stored.
+struct UpdateRecord : UpdateSummary {
+  /// Every robot whose reply the update kept, at the position its reply carried (in the order
+  /// heard); the oracle protocol leaves it empty.
+  std::vector<HeardRobot> heard;
 };
 
 /// A cell with its bounding robots named by node id.

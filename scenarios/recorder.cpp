@@ -233,7 +233,6 @@ void Recorder::on_update(std::size_t robot, const protocols::UpdateRecord& recor
   }
   correct_updates_ += row.correct ? 1 : 0;
   correct_heard_updates_ += row.correct_heard ? 1 : 0;
-  row.record.heard = {};  // judged: not written
   if (!def_.output.updates) row.record.cell.vertices.clear();  // keep memory small
   updates_.push_back(std::move(row));
 }

@@ -64,7 +64,7 @@ class Recorder final : public agents::WorldObserver {
 
  private:
   struct UpdateRow {
-    protocols::UpdateRecord record;
+    protocols::UpdateSummary record;  // the robots heard are judged, not kept
     bool correct = false;        ///< the neighbour set of the true positions at the end
     bool correct_heard = false;  ///< the neighbour set of the positions the update heard
   };
