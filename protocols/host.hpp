@@ -31,7 +31,7 @@ struct HeardRobot {
   Vec2 position{0, 0};
 };
 
-/// What one Voronoi update did (SPEC §5.4): the part recorders keep.
+/// What one Voronoi update did: the part recorders keep.
 struct UpdateSummary {
   NodeId robot = sim::kNoNode;
   std::uint32_t update = 0;   ///< the robot's update counter, from 1
