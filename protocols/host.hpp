@@ -25,8 +25,14 @@ struct MessageTally {
   std::uint64_t count = 0, bytes = 0;
 };
 
-/// What one Voronoi update did (docs/protocols.md). Recorders judge it (e.g. cell correctness).
-struct UpdateRecord {
+/// A robot as one update heard it: its position as carried by the NEIGHBOR reply the update used.
+struct HeardRobot {
+  NodeId robot = sim::kNoNode;
+  Vec2 position{0, 0};
+};
+
+/// What one Voronoi update did (docs/protocols.md): the part recorders keep.
+struct UpdateSummary {
   NodeId robot = sim::kNoNode;
   std::uint32_t update = 0;   ///< the robot's update counter, from 1
   sim::Time started{}, finished{};
@@ -41,6 +47,14 @@ struct UpdateRecord {
   Vec2 centroid{0, 0};        ///< the new target (or the kept one)
   std::uint32_t readings = 0; ///< readings inside the cell used for the centroid
   std::array<MessageTally, net::kMessageTypeCount> messages{};
+};
+
+/// An update as the robot reports it. Recorders judge it (e.g. cell correctness) and keep the
+/// summary: the robots heard are judged, not stored.
+struct UpdateRecord : UpdateSummary {
+  /// Every robot whose reply the update kept, at the position its reply carried (in the order
+  /// heard); the oracle protocol leaves it empty.
+  std::vector<HeardRobot> heard;
 };
 
 /// A cell with its bounding robots named by node id.

@@ -109,6 +109,7 @@ void VoronoiProtocol::end_round() {
   // 2) construct V_i from the replies (bisectors within Ω; the disk B(p_i, R_i) is applied
   //    through the sensing range and the distance rule of decide()).
   cell_ = compute_cell();
+  cell_sites_ = neighbours_.size();
   MASNET_LOG(log_, debug, "robot {} update {}: round {} timed out after {} s with {} neighbours heard",
              number(host_.id()), update_, record_.rounds, params_.reply_timeout_s, neighbours_.size());
   if (record_.rounds > 1) {
@@ -127,6 +128,12 @@ void VoronoiProtocol::end_round() {
 }
 
 void VoronoiProtocol::decide() {
+  // A reply that came after its round's deadline (while the sensors answered) still bounds V_i:
+  // the stop rule certifies a cell only if every robot heard within R bounds it.
+  if (cell_sites_ != neighbours_.size()) {
+    cell_ = compute_cell();
+    cell_sites_ = neighbours_.size();
+  }
   if (params_.kind != ProtocolKind::radius_doubling) {
     // One round only; the cell is not certified when it reaches beyond the radius.
     finish_update(max_vertex_distance(cell_.polygon, position_) > radius_m_);
@@ -176,6 +183,7 @@ void VoronoiProtocol::finish_update(bool truncated) {
   record_.cell = truncated ? voronoi_cell(0, std::vector<Vec2>{position_}, {}, cell_.polygon, radius_m_).polygon
                            : cell_.polygon;
   for (std::uint32_t index : cell_.neighbours) record_.neighbours.push_back(neighbours_[index - 1].robot);
+  for (const HeardNeighbour& n : neighbours_) record_.heard.push_back({n.robot, n.position});
   std::sort(record_.neighbours.begin(), record_.neighbours.end());
   if (accumulator.has_mass()) {
     last_target_ = accumulator.centroid();

@@ -138,6 +138,7 @@ class VoronoiProtocol {
   std::vector<HeardNeighbour> neighbours_;
   std::vector<HeardReading> readings_;
   Cell cell_;                        // Ω ∩ bisectors (no disk): the current V_i
+  std::size_t cell_sites_ = 0;       // how many of neighbours_ cell_ was computed from
   std::vector<Vec2> sensed_cell_;    // the V_i sent in this update's SENSE
 };
 

@@ -9,6 +9,7 @@
 #include <fmt/compile.h>
 #include <fmt/format.h>
 
+#include "protocols/heard_cell.hpp"
 #include "scenarios/output_file.hpp"
 
 namespace masnet::scenarios {
@@ -158,6 +159,8 @@ void Recorder::sample() {
   }
   row.updates = updates_.size();
   row.cell_correctness = updates_.empty() ? 1.0 : static_cast<double>(correct_updates_) / static_cast<double>(updates_.size());
+  row.cell_correctness_heard =
+      updates_.empty() ? 1.0 : static_cast<double>(correct_heard_updates_) / static_cast<double>(updates_.size());
   samples_.push_back(std::move(row));
 }
 
@@ -218,15 +221,18 @@ void Recorder::snapshot() {
 }
 
 void Recorder::on_update(std::size_t robot, const protocols::UpdateRecord& record) {
-  UpdateRow row{record, true};
-  // Cell correctness: the neighbour set the robot computed against the true one now.
+  UpdateRow row{record, true, true};
+  // Cell correctness: the neighbour set the robot computed against the true one now, and
+  // against the one of the positions it heard (docs/decisions/0010-cell-correctness.md).
   if (def_.world.protocol.kind != protocols::ProtocolKind::oracle) {
     // The robot's own cell is a good guess of the true one's reach (Cortés' rule needs twice the
     // farthest vertex; a quarter more spares most doublings).
     const double guess = 2.5 * protocols::max_vertex_distance(record.cell, world_.robot_state(robot).position);
     row.correct = world_.oracle_cell(robot, guess).neighbours == record.neighbours;
+    row.correct_heard = protocols::heard_neighbours(record.position, record.heard, world_.def().domain) == record.neighbours;
   }
   correct_updates_ += row.correct ? 1 : 0;
+  correct_heard_updates_ += row.correct_heard ? 1 : 0;
   if (!def_.output.updates) row.record.cell.vertices.clear();  // keep memory small
   updates_.push_back(std::move(row));
 }
@@ -239,7 +245,7 @@ void Recorder::write_timeseries(const std::string& path) const {
   OutputFile out(path);
   const std::size_t targets = def_.world.field.kind == agents::FieldKind::acoustic ? def_.world.field.targets.size() : 0;
   out.print("t_s,coverage_cost,mean_dist_to_centroid,max_dist_to_centroid,mean_radius,messages,bytes,energy_j,"
-            "updates,cell_correctness");
+            "updates,cell_correctness,cell_correctness_heard");
   if (targets) out.print(",tracking_error_mean,tracking_error_max");
   for (std::size_t k = 0; k < targets; ++k) out.print(",robots_target_{}", k);
   const bool pollution = world_.diffusion() != nullptr;
@@ -247,8 +253,9 @@ void Recorder::write_timeseries(const std::string& path) const {
   if (pollution && has_baseline_) out.print(",pollution_total_baseline,pollution_integral_baseline");
   out.print("\n");
   for (const Sample& s : samples_) {
-    out.print("{},{},{},{},{},{},{},{},{},{}", s.t_s, s.coverage_cost, s.mean_dist_to_centroid,
-              s.max_dist_to_centroid, s.mean_radius, s.messages, s.bytes, s.energy_j, s.updates, s.cell_correctness);
+    out.print("{},{},{},{},{},{},{},{},{},{},{}", s.t_s, s.coverage_cost, s.mean_dist_to_centroid,
+              s.max_dist_to_centroid, s.mean_radius, s.messages, s.bytes, s.energy_j, s.updates, s.cell_correctness,
+              s.cell_correctness_heard);
     if (targets) out.print(",{},{}", s.tracking_mean, s.tracking_max);
     for (std::size_t k = 0; k < targets; ++k) out.print(",{}", k < s.robots_per_target.size() ? s.robots_per_target[k] : 0);
     if (pollution) out.print(",{},{},{},{}", s.pollution_total, s.pollution_integral, s.pollution_max, s.neutraliser_used);
@@ -270,15 +277,15 @@ void Recorder::write_trajectories(const std::string& path) const {
 void Recorder::write_updates(const std::string& path) const {
   OutputFile out(path);
   out.print("robot,update,t_start_s,t_end_s,latency_s,rounds,radius,truncated,delayed,no_mass,readings,"
-            "neighbours,correct,cx,cy");
+            "neighbours,correct,correct_heard,cx,cy");
   for (std::size_t t = 0; t < net::kMessageTypeCount; ++t) out.print(",{0}_count,{0}_bytes", net::kMessageTypeNames[t]);
   out.print("\n");
   for (const UpdateRow& u : updates_) {
     const auto& r = u.record;
-    out.print("{},{},{},{},{},{},{},{:d},{:d},{:d},{},{},{:d},{},{}", sim::index(r.robot), r.update,
+    out.print("{},{},{},{},{},{},{},{:d},{:d},{:d},{},{},{:d},{:d},{},{}", sim::index(r.robot), r.update,
               sim::to_seconds(r.started), sim::to_seconds(r.finished), sim::to_seconds(r.finished - r.started),
               r.rounds, r.radius, r.truncated, r.delayed, r.no_mass, r.readings, r.neighbours.size(), u.correct,
-              r.centroid.x(), r.centroid.y());
+              u.correct_heard, r.centroid.x(), r.centroid.y());
     for (const auto& tally : r.messages) out.print(",{},{}", tally.count, tally.bytes);
     out.print("\n");
   }
@@ -457,6 +464,7 @@ nlohmann::json Recorder::summary_metrics() const {
   p["rounds_max"] = rounds_max;
   p["truncated"] = truncated;
   p["cell_correctness"] = updates_.empty() ? 1.0 : static_cast<double>(correct_updates_) / n_updates;
+  p["cell_correctness_heard"] = updates_.empty() ? 1.0 : static_cast<double>(correct_heard_updates_) / n_updates;
   p["delayed_updates"] = delayed;
   p["no_mass_updates"] = no_mass;
   p["latency_mean_s"] = latency / div;

@@ -26,6 +26,7 @@ struct Sample {
   double tracking_mean = 0, tracking_max = 0;  ///< distance from targets to their nearest robot
   std::vector<std::uint32_t> robots_per_target;
   double cell_correctness = 1.0;    ///< share of updates so far with the oracle's neighbour set
+  double cell_correctness_heard = 1.0;  ///< the same against the cell of the positions heard
   std::uint64_t updates = 0;
   // Diffusion runs (paper §VI-B).
   double pollution_total = 0;       ///< Σ of the sensors' readings (paper Fig. 6)
@@ -63,8 +64,9 @@ class Recorder final : public agents::WorldObserver {
 
  private:
   struct UpdateRow {
-    protocols::UpdateRecord record;
-    bool correct = false;
+    protocols::UpdateSummary record;  // the robots heard are judged, not kept
+    bool correct = false;        ///< the neighbour set of the true positions at the end
+    bool correct_heard = false;  ///< the neighbour set of the positions the update heard
   };
   struct TrajectoryRow {
     double t_s;
@@ -84,7 +86,7 @@ class Recorder final : public agents::WorldObserver {
   std::vector<TrajectoryRow> trajectories_;
   std::vector<UpdateRow> updates_;
   nlohmann::json snapshots_ = nlohmann::json::array();
-  std::uint64_t correct_updates_ = 0;
+  std::uint64_t correct_updates_ = 0, correct_heard_updates_ = 0;
   std::vector<int> last_group_;  // nearest target of each robot at the last sample
   std::uint64_t group_changes_ = 0;
   std::vector<std::pair<sim::NodeId, double>> deaths_;

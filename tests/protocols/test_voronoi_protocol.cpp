@@ -7,6 +7,7 @@
 #include <map>
 #include <vector>
 
+#include "protocols/heard_cell.hpp"
 #include "protocols/voronoi_protocol.hpp"
 
 using namespace masnet;
@@ -353,4 +354,52 @@ TEST_CASE("stale readings of an earlier update and late replies are ignored", "[
   REQUIRE(host.fire(p, VoronoiProtocol::kSenseEnd));
   CHECK(host.records.back().readings == 0);
   CHECK(host.records.back().no_mass);
+}
+
+TEST_CASE("an update records every reply it used, at the position the reply carried", "[protocols]") {
+  World w;
+  w.robots[1] = Vec2{0.9375, 0.5};
+  w.robots[2] = Vec2{0.5, 0.125};
+  w.robots[3] = Vec2{0.95, 0.05};  // heard, but its bisector x − y = 0.45 misses the cell
+  ProtocolParams params;
+  params.criterion = StopCriterion::vertices;
+  params.decay.patience = 0;
+  FakeHost host;
+  VoronoiProtocol p(host, params, unit_square(), 0.001);
+  initialise(host, p, {1.5});
+  const UpdateRecord r = run_update(host, p, w);
+  REQUIRE(r.heard.size() == 3);
+  for (const HeardRobot& h : r.heard) CHECK(h.position == w.robots.at(sim::index(h.robot)));
+  CHECK(r.neighbours == std::vector<NodeId>{sim::node_id(1), sim::node_id(2)});
+  CHECK(heard_neighbours(r.position, r.heard, rectangle(0, 0, 1, 1)) == r.neighbours);
+}
+
+TEST_CASE("a reply that comes after its round's deadline still bounds the cell the update stops with",
+          "[protocols]") {
+  // R = 1.5 certifies the whole square at once (farthest vertex √0.5); the neighbour's reply is
+  // queued behind other frames and arrives while the sensors answer the SENSE. Its bisector
+  // x = 0.6 cuts the cell, and R >= 2d still holds for the cut cell.
+  World w;
+  w.sensors[10] = Vec2{0.25, 0.5};
+  w.sensors[11] = Vec2{0.75, 0.5};  // beyond the late neighbour's bisector
+  ProtocolParams params;
+  params.criterion = StopCriterion::vertices;
+  params.decay.patience = 0;
+  FakeHost host;
+  VoronoiProtocol p(host, params, unit_square(), 0.001);
+  initialise(host, p, {1.5});
+  REQUIRE(host.fire(p, VoronoiProtocol::kTick));
+  REQUIRE(host.fire(p, VoronoiProtocol::kRoundEnd));  // nobody replied in time
+  REQUIRE(std::holds_alternative<net::Sense>(host.last().payload));
+  p.on_frame(frame(net::Neighbor{sim::node_id(1), Vec2{0.7, 0.5}}));
+  answer_last(host, p, w);
+  REQUIRE(host.fire(p, VoronoiProtocol::kSenseEnd));
+  REQUIRE(host.records.size() == 1);
+  const UpdateRecord& r = host.records[0];
+  CHECK(r.rounds == 1);
+  CHECK(r.neighbours == std::vector<NodeId>{sim::node_id(1)});
+  CHECK(heard_neighbours(r.position, r.heard, rectangle(0, 0, 1, 1)) == r.neighbours);
+  CHECK(area(r.cell) == Approx(0.6));
+  CHECK(r.readings == 1);  // the reading east of the bisector is no longer in the cell
+  CHECK(r.centroid == Vec2{0.25, 0.5});
 }
