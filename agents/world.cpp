@@ -180,7 +180,7 @@ void World::start() {
     RobotAgent* agent = robot.get();
     simulator_.after(sim::Duration{0}, [agent] { agent->protocol().start(); });
   }
-  if (diffusion_)  // the PDE is the one thing that advances on a fixed step (STYLE habit 6)
+  if (diffusion_)  // the PDE is the one thing that advances on a fixed step
     simulator_.after(sim::seconds(def_.field.diffusion.dt_s), [this] { pde_step(); });
   const BeaconDef& b = def_.beacons;
   if (b.senders == BeaconSenders::none) return;

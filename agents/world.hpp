@@ -2,7 +2,7 @@
 // The world: sensors, robots, targets, the density field and the radio, owned together and
 // wired to the protocols through RobotHost / SensorHost. It knows nothing of files: a builder
 // in scenarios/ fills a WorldDef, and recorders in scenarios/ observe through a WorldObserver
-// and the read-only accessors (STYLE: output is never written from inside the model).
+// and the read-only accessors (output is never written from inside the model).
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -36,7 +36,7 @@ struct BeaconDef {
   double range = 0.2;  ///< world units
 };
 
-/// The robots' dispensers (paper §VI-B, SPEC §6.2): f_c = −k_s · (mean reading of the sensors in
+/// The robots' dispensers (paper §VI-B; docs/field-models.md): f_c = −k_s · (mean reading of the sensors in
 /// the robot's cell that lie within spray_radius of it), magnitude capped at max_rate.
 enum class SprayReadings {
   live,         ///< the current values of those sensors (what Diff-MAS2D did)

@@ -1,7 +1,7 @@
 #pragma once
-// The robots' Voronoi protocols as one state machine (SPEC §5). The variants differ in a rule,
-// not in a file (STYLE): how many DISCOVER rounds, how R grows, when to stop, how R decays.
-//   radius_doubling — the seed's protocol (paper §III-B) after Cortés et al.
+// The robots' Voronoi protocols as one state machine (docs/protocols.md). The variants differ in a rule,
+// not in a file: how many DISCOVER rounds, how R grows, when to stop, how R decays.
+//   radius_doubling — the paper's protocol (paper §III-B) after Cortés et al.
 //   fixed_radius    — one DISCOVER round with a constant R
 //   gabriel         — one round at max range, only Gabriel neighbours bound the cell
 //   oracle          — the exact cell from true positions, zero messages

@@ -1,5 +1,5 @@
 #pragma once
-// Observes a World from outside the model (STYLE: output is never written from inside it):
+// Observes a World from outside the model (output is never written from inside it):
 // per-update protocol records with cell correctness, periodic time-series samples,
 // trajectories and snapshots. Sampling runs between `run_until` chunks, not as events, so
 // what is recorded never changes the event stream or its fingerprint.

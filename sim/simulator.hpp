@@ -1,6 +1,6 @@
 #pragma once
 // The discrete-event kernel: a clock, a queue of small event records and a pool of inline
-// actions. No globals: pass `Simulator&` explicitly (STYLE habit 1).
+// actions. No globals: pass `Simulator&` explicitly.
 #include <cstdint>
 #include <functional>
 #include <utility>

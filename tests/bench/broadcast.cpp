@@ -1,7 +1,7 @@
 // Unit-disk broadcast through the real net::Radio: n static nodes uniform in the unit square,
 // range calibrated for a mean degree, every node broadcasts once per period (random phase)
 // for `rounds` rounds. Same layout, phases and range as the ns-3 peer
-// (docs/performance.md), so deliveries and checksum must equal the peer's.
+// (tests/bench/peers/bcast_ns3.cc), so deliveries and checksum must equal the peer's.
 //   masnet_bench_broadcast --n=1600 --degree=20 --rounds=100
 #include <cmath>
 #include <cstdio>

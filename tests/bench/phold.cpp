@@ -1,6 +1,6 @@
 // PHOLD on the masnet kernel: N logical processes, M initial events each; every event
 // schedules one new event at a uniformly random LP after an exponential delay of mean 1 s.
-// Same workload, random stream and tie-break as the ns-3 peer (docs/performance.md),
+// Same workload, random stream and tie-break as the ns-3 peer (tests/bench/peers/phold_ns3.cc),
 // so the checksum printed must equal the peer's for the same arguments.
 //   masnet_bench_phold --lps=100 --m=10 --events=1e7 [--warmup=N]
 #include <cmath>

@@ -24,7 +24,7 @@ TEST_CASE("streams differ by seed, node and purpose", "[sim]") {
 
 TEST_CASE("xoshiro256** from splitmix64 seeding gives the reference sequence", "[sim]") {
   // Reference: the published xoshiro256** and splitmix64 algorithms, state seeded from 42;
-  // the same sequence the ns-3 peer benchmarks use (docs/performance.md).
+  // the same sequence the ns-3 peer benchmarks use (tests/bench/peers/common.h).
   std::uint64_t x = 42, s[4];
   for (auto& w : s) {
     std::uint64_t z = (x += 0x9e3779b97f4a7c15ULL);

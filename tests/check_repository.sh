@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Checks that keep the docs true to the tree: docs/architecture.md names every header of the
+# five libraries, and nothing cites a document outside the repository (the repository speaks
+# only of itself: docs/ pages and the paper by its title). Run by CTest from the source root.
+set -u
+cd "$(dirname "$0")/.."
+status=0
+for header in sim/*.hpp net/*.hpp protocols/*.hpp agents/*.hpp scenarios/*.hpp; do
+  if ! grep -q "$(basename "$header")" docs/architecture.md; then
+    echo "docs/architecture.md does not name $header"
+    status=1
+  fi
+done
+# Citations of documents that are not in the repository.
+pattern='SPEC §|STYLE habit|\(STYLE[):]|shared/peers|shared/seed'
+if git ls-files >/dev/null 2>&1; then files=$(git ls-files | grep -v '^LICENSE$' | grep -v '^tests/check_repository.sh$'); else files=$(find . -type f -not -path './build/*' -not -path './.git/*'); fi
+hits=$(echo "$files" | xargs grep -nIE "$pattern" 2>/dev/null || true)
+if [ -n "$hits" ]; then
+  echo "citations of documents outside the repository:"
+  echo "$hits"
+  status=1
+fi
+if [ "$status" -eq 0 ]; then echo "repository checks: ok"; fi
+exit "$status"
