@@ -9,9 +9,12 @@ AnalyticField::AnalyticField(const FieldDef& def) : def_(def) {}
 
 std::vector<Vec2> AnalyticField::sources_at(double t_s) const {
   std::vector<Vec2> out;
-  for (const PathDef& p : def_.targets) out.push_back(position_on(p, t_s));
-  for (const GaussianBump& b : def_.bumps) out.push_back(position_on(b.path, t_s));
-  for (const SourceDef& s : def_.sources) out.push_back(position_on(s.path, t_s));
+  for (const PathDef& p : def_.targets)
+    out.push_back(position_on(p, t_s));
+  for (const GaussianBump& b : def_.bumps)
+    out.push_back(position_on(b.path, t_s));
+  for (const SourceDef& s : def_.sources)
+    out.push_back(position_on(s.path, t_s));
   return out;
 }
 
@@ -21,8 +24,12 @@ void AnalyticField::move_to(double t_s) {
   cached_t_s_ = t_s;
 }
 
-double AnalyticField::value(const Vec2& s, double t_s) { return evaluate(s, t_s, true); }
-double AnalyticField::peek(const Vec2& s, double t_s) { return evaluate(s, t_s, false); }
+double AnalyticField::value(const Vec2& s, double t_s) {
+  return evaluate(s, t_s, true);
+}
+double AnalyticField::peek(const Vec2& s, double t_s) {
+  return evaluate(s, t_s, false);
+}
 
 double AnalyticField::evaluate(const Vec2& s, double t_s, bool count) {
   if (def_.kind == FieldKind::acoustic || def_.kind == FieldKind::gaussian) move_to(t_s);
@@ -45,7 +52,8 @@ void AnalyticField::row_values(double y, const double* xs, std::size_t n, double
           const double cx = centres_[t].x(), dy = centres_[t].y() - y, dy2 = dy * dy;
           const double* __restrict row_xs = xs;
           double* __restrict row_out = out;
-          if (dy2 >= d2_min) {  // d² >= dy² everywhere on the row: nothing clamps, and this vectorises
+          if (dy2 >=
+              d2_min) {  // d² >= dy² everywhere on the row: nothing clamps, and this vectorises
             for (std::size_t k = 0; k < n; ++k) {
               const double dx = cx - row_xs[k];
               row_out[k] += amplitude / (dx * dx + dy2);
@@ -63,15 +71,18 @@ void AnalyticField::row_values(double y, const double* xs, std::size_t n, double
         return;
       }
       break;
-    default: break;
+    default:
+      break;
   }
-  for (std::size_t k = 0; k < n; ++k) out[k] = point_value(Vec2{xs[k], y}, true);
+  for (std::size_t k = 0; k < n; ++k)
+    out[k] = point_value(Vec2{xs[k], y}, true);
 }
 
 double AnalyticField::point_value(const Vec2& s, bool count) {
   switch (def_.kind) {
     case FieldKind::uniform:
-    case FieldKind::diffusion: return def_.uniform_value;
+    case FieldKind::diffusion:
+      return def_.uniform_value;
     case FieldKind::acoustic: {
       double rho = 0.0;
       const double d2_min = def_.min_distance * def_.min_distance;
@@ -82,7 +93,8 @@ double AnalyticField::point_value(const Vec2& s, bool count) {
           if (count) ++clamped_;
         }
         // α = 2 (the default) needs no pow: a·d^(−2) = a / d².
-        rho += def_.alpha == 2.0 ? def_.amplitude / d2 : def_.amplitude * std::pow(d2, -0.5 * def_.alpha);
+        rho += def_.alpha == 2.0 ? def_.amplitude / d2
+                                 : def_.amplitude * std::pow(d2, -0.5 * def_.alpha);
       }
       return rho;
     }

@@ -1,6 +1,6 @@
 #pragma once
-// Density fields ρ(s, t) >= 0 sampled by the sensors (docs/field-models.md): acoustic targets (paper
-// eq. 3), Gaussian bumps, uniform. The diffusion PDE lives in diffusion_field.hpp and is
+// Density fields ρ(s, t) >= 0 sampled by the sensors (docs/field-models.md): acoustic targets
+// (paper eq. 3), Gaussian bumps, uniform. The diffusion PDE lives in diffusion_field.hpp and is
 // advanced by the world. See docs/field-models.md.
 #include <cmath>
 #include <cstdint>
@@ -60,7 +60,8 @@ class AnalyticField {
 
   /// The value everywhere when the field is uniform (lets a row of readings skip the field).
   std::optional<double> uniform_value() const {
-    return def_.kind == FieldKind::uniform ? std::optional<double>(def_.uniform_value) : std::nullopt;
+    return def_.kind == FieldKind::uniform ? std::optional<double>(def_.uniform_value)
+                                           : std::nullopt;
   }
 
   std::uint64_t clamped_readings() const { return clamped_; }

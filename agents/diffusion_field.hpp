@@ -1,9 +1,9 @@
 #pragma once
-// The pollution field of paper §VI-B (docs/field-models.md): ∂u/∂t = κ∇²u + Σ f δ(x − x(t)) on a rectangle,
-// u(x, 0) = 0, discretised on a node grid and advanced by fixed steps. Plain numerics: no event
-// kernel here; the World owns one field, steps it from a periodic event, tells it where the point
-// injections (sources, robots' sprays) are and reads it at sensor positions.
-// Schemes, limits and measured accuracy: docs/field-models.md.
+// The pollution field of paper §VI-B (docs/field-models.md): ∂u/∂t = κ∇²u + Σ f δ(x − x(t)) on a
+// rectangle, u(x, 0) = 0, discretised on a node grid and advanced by fixed steps. Plain numerics:
+// no event kernel here; the World owns one field, steps it from a periodic event, tells it where
+// the point injections (sources, robots' sprays) are and reads it at sensor positions. Schemes,
+// limits and measured accuracy: docs/field-models.md.
 #include <cstddef>
 #include <functional>
 #include <optional>

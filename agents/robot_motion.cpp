@@ -10,7 +10,7 @@ namespace {
 struct SpringFactors {
   enum class Kind { free, friction, critical, under, over } kind = Kind::free;
   double t = 0.0, a = 0.0, w = 0.0, r1 = 0.0, r2 = 0.0;  // rates
-  double e = 0.0, c = 0.0, s = 0.0, e2 = 0.0;             // at t
+  double e = 0.0, c = 0.0, s = 0.0, e2 = 0.0;            // at t
 };
 
 SpringFactors spring_factors(double k, double k_v, double t) {
@@ -75,7 +75,12 @@ AxisState damped_spring(double k, double k_v, double x0, double v0, double t) {
 
 MotionSegment::MotionSegment(const MotionParams& params, double t0_s, const MotionState& start,
                              const Vec2& target)
-    : params_(params), t0_s_(t0_s), start_(start), target_(target), cached_t_s_(t0_s), cached_(start) {
+    : params_(params),
+      t0_s_(t0_s),
+      start_(start),
+      target_(target),
+      cached_t_s_(t0_s),
+      cached_(start) {
   const Vec2 x0 = start.position - target;
   speed_bound_ = std::sqrt(start.velocity.squaredNorm() + params.k * x0.squaredNorm());
   if (params.max_speed > 0.0) speed_bound_ = std::fmin(speed_bound_, params.max_speed);
@@ -107,8 +112,10 @@ MotionState rk4_step(const MotionParams& p, const Vec2& target, const MotionStat
   const MotionState k3 = f(add(s, k2, 0.5 * h));
   const MotionState k4 = f(add(s, k3, h));
   MotionState next;
-  next.position = s.position + (h / 6.0) * (k1.position + 2.0 * k2.position + 2.0 * k3.position + k4.position);
-  next.velocity = s.velocity + (h / 6.0) * (k1.velocity + 2.0 * k2.velocity + 2.0 * k3.velocity + k4.velocity);
+  next.position =
+      s.position + (h / 6.0) * (k1.position + 2.0 * k2.position + 2.0 * k3.position + k4.position);
+  next.velocity =
+      s.velocity + (h / 6.0) * (k1.velocity + 2.0 * k2.velocity + 2.0 * k3.velocity + k4.velocity);
   return clamp_speed(p, next);
 }
 }  // namespace

@@ -11,10 +11,10 @@ namespace masnet::agents {
 using net::Vec2;
 
 struct MotionParams {
-  double k = 3.0;              ///< spring gain, 1/s²
-  double k_v = 1.0;            ///< viscous friction, 1/s
-  double max_speed = 0.0;      ///< world units / s; 0 = unlimited
-  double substep_s = 1e-3;     ///< RK4 step used only when max_speed > 0
+  double k = 3.0;           ///< spring gain, 1/s²
+  double k_v = 1.0;         ///< viscous friction, 1/s
+  double max_speed = 0.0;   ///< world units / s; 0 = unlimited
+  double substep_s = 1e-3;  ///< RK4 step used only when max_speed > 0
   /// Discrete Lloyd iterations: the robot is placed on each new target at once (no dynamics).
   bool jump_to_target = false;
 };
@@ -28,7 +28,8 @@ struct MotionState {
 class MotionSegment {
  public:
   MotionSegment() = default;
-  MotionSegment(const MotionParams& params, double t0_s, const MotionState& start, const Vec2& target);
+  MotionSegment(const MotionParams& params, double t0_s, const MotionState& start,
+                const Vec2& target);
 
   /// The state at time `t_s` >= start time (exact for the linear law; RK4 substeps if limited).
   MotionState state_at(double t_s) const;

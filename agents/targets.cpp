@@ -8,7 +8,8 @@ namespace {
 // Length of the polyline (closed if looping).
 double path_length(const PathDef& p) {
   double length = 0.0;
-  for (std::size_t i = 1; i < p.waypoints.size(); ++i) length += (p.waypoints[i] - p.waypoints[i - 1]).norm();
+  for (std::size_t i = 1; i < p.waypoints.size(); ++i)
+    length += (p.waypoints[i] - p.waypoints[i - 1]).norm();
   if (p.loop && p.waypoints.size() > 1) length += (p.waypoints.front() - p.waypoints.back()).norm();
   return length;
 }
@@ -40,7 +41,8 @@ Vec2 position_on(const PathDef& path, double t_s) {
   if (path.loop && total > 0.0) s = std::fmod(s, total);
   Vec2 a, b;
   double offset = 0.0;
-  if (!locate(path, s, a, b, offset)) return path.loop ? path.waypoints.front() : path.waypoints.back();
+  if (!locate(path, s, a, b, offset))
+    return path.loop ? path.waypoints.front() : path.waypoints.back();
   const double length = (b - a).norm();
   return length > 0.0 ? a + (offset / length) * (b - a) : a;
 }

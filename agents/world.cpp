@@ -11,18 +11,27 @@ namespace masnet::agents {
 namespace {
 
 // Random keys by role and index: stable when nodes of another role (or later ones) are added.
-std::uint64_t robot_key(std::size_t i) { return (std::uint64_t{1} << 32) | i; }
-std::uint64_t sensor_key(std::size_t i) { return (std::uint64_t{2} << 32) | i; }
+std::uint64_t robot_key(std::size_t i) {
+  return (std::uint64_t{1} << 32) | i;
+}
+std::uint64_t sensor_key(std::size_t i) {
+  return (std::uint64_t{2} << 32) | i;
+}
 
-constexpr std::uint32_t bit(net::MessageType t) { return 1u << static_cast<unsigned>(t); }
-constexpr std::uint32_t kRobotInterest = bit(net::MessageType::discover) | bit(net::MessageType::neighbor) |
-                                         bit(net::MessageType::reading) | bit(net::MessageType::report);
-constexpr std::uint32_t kSensorInterest = bit(net::MessageType::position) | bit(net::MessageType::sense);
+constexpr std::uint32_t bit(net::MessageType t) {
+  return 1u << static_cast<unsigned>(t);
+}
+constexpr std::uint32_t kRobotInterest =
+    bit(net::MessageType::discover) | bit(net::MessageType::neighbor) |
+    bit(net::MessageType::reading) | bit(net::MessageType::report);
+constexpr std::uint32_t kSensorInterest =
+    bit(net::MessageType::position) | bit(net::MessageType::sense);
 
 double diameter(const protocols::ConvexPolygon& polygon) {
   double d = 0.0;
   for (const Vec2& a : polygon.vertices)
-    for (const Vec2& b : polygon.vertices) d = std::max(d, (a - b).norm());
+    for (const Vec2& b : polygon.vertices)
+      d = std::max(d, (a - b).norm());
   return d;
 }
 
@@ -168,7 +177,8 @@ World::World(sim::Simulator& simulator, const WorldDef& def)
   }
   sensor_states_.assign(def_.sensors.size(), protocols::SensorState{});
   sensor_read_counts_.assign(def_.sensors.size(), 0);
-  if (def_.field.kind == FieldKind::diffusion) diffusion_ = std::make_unique<DiffusionField>(def_.field.diffusion);
+  if (def_.field.kind == FieldKind::diffusion)
+    diffusion_ = std::make_unique<DiffusionField>(def_.field.diffusion);
   spray_rate_.assign(robots_.size(), 0.0);
   neutraliser_used_.assign(robots_.size(), 0.0);
 }
@@ -186,12 +196,15 @@ void World::start() {
   if (b.senders == BeaconSenders::none) return;
   auto schedule = [&](NodeId node, std::uint64_t key) {
     auto phase = sim::RandomStream::keyed(def_.seed, key, sim::purpose("beacon.phase"));
-    simulator_.after(sim::seconds(phase.uniform(0.0, b.period_s)), [this, node] { send_beacon(node); });
+    simulator_.after(sim::seconds(phase.uniform(0.0, b.period_s)),
+                     [this, node] { send_beacon(node); });
   };
   if (b.senders == BeaconSenders::robots || b.senders == BeaconSenders::all)
-    for (std::size_t i = 0; i < robots_.size(); ++i) schedule(robot_node(i), robot_key(i));
+    for (std::size_t i = 0; i < robots_.size(); ++i)
+      schedule(robot_node(i), robot_key(i));
   if (b.senders == BeaconSenders::sensors || b.senders == BeaconSenders::all)
-    for (std::size_t s = 0; s < def_.sensors.size(); ++s) schedule(sensor_node(s), sensor_key(s));
+    for (std::size_t s = 0; s < def_.sensors.size(); ++s)
+      schedule(sensor_node(s), sensor_key(s));
 }
 
 void World::send_beacon(NodeId node) {
@@ -199,8 +212,12 @@ void World::send_beacon(NodeId node) {
   simulator_.after(sim::seconds(def_.beacons.period_s), [this, node] { send_beacon(node); });
 }
 
-MotionState World::robot_state(std::size_t robot) const { return robots_[robot]->state(); }
-Vec2 World::robot_target(std::size_t robot) const { return robots_[robot]->segment().target(); }
+MotionState World::robot_state(std::size_t robot) const {
+  return robots_[robot]->state();
+}
+Vec2 World::robot_target(std::size_t robot) const {
+  return robots_[robot]->segment().target();
+}
 const protocols::VoronoiProtocol& World::robot_protocol(std::size_t robot) const {
   return robots_[robot]->protocol();
 }
@@ -221,7 +238,8 @@ double World::field_value(const Vec2& s) {
 double World::pollution_total() const {
   double total = 0.0;
   if (diffusion_)
-    for (const SensorDef& s : def_.sensors) total += diffusion_->value_at(s.position);
+    for (const SensorDef& s : def_.sensors)
+      total += diffusion_->value_at(s.position);
   return total;
 }
 
@@ -232,9 +250,11 @@ void World::pde_step() {
   const double t0 = sim::to_seconds(simulator_.now()) - dt;
   const bool spraying = def_.dispenser.enabled;
   if (spraying)
-    for (std::size_t i = 0; i < robots_.size(); ++i) spray_rate_[i] = spray_rate(i);
+    for (std::size_t i = 0; i < robots_.size(); ++i)
+      spray_rate_[i] = spray_rate(i);
   const InjectionFn injections = [this, spraying](double t, std::vector<PointInjection>& out) {
-    for (const SourceDef& source : def_.field.sources) out.push_back({position_on(source.path, t), source.rate(t)});
+    for (const SourceDef& source : def_.field.sources)
+      out.push_back({position_on(source.path, t), source.rate(t)});
     if (spraying)
       for (std::size_t i = 0; i < robots_.size(); ++i)
         out.push_back({robots_[i]->segment().state_at(t).position, spray_rate_[i]});
@@ -273,7 +293,8 @@ double World::spray_rate(std::size_t robot) const {
   const double mean = sum / static_cast<double>(count);
   double magnitude = std::min(d.gain * std::max(mean, 0.0), d.max_rate);
   if (d.payload > 0)
-    magnitude = std::min(magnitude, (d.payload - neutraliser_used_[robot]) / def_.field.diffusion.dt_s);
+    magnitude =
+        std::min(magnitude, (d.payload - neutraliser_used_[robot]) / def_.field.diffusion.dt_s);
   return -magnitude;
 }
 
@@ -297,7 +318,9 @@ protocols::RobotCell World::oracle_cell(std::size_t robot, double first_radius) 
   const double span = diameter(def_.domain);
   // Cortés' rule with true positions: neighbours within r certify the cell once r >= 2·(farthest
   // vertex); start from the caller's guess or a radius that suits a uniform spread, and double.
-  double r = first_radius > 0.0 ? first_radius : std::max(2.0 * span / std::sqrt(static_cast<double>(robots_.size())), 1e-6);
+  double r = first_radius > 0.0
+                 ? first_radius
+                 : std::max(2.0 * span / std::sqrt(static_cast<double>(robots_.size())), 1e-6);
   struct Site {
     double d2;
     NodeId node;
@@ -310,12 +333,15 @@ protocols::RobotCell World::oracle_cell(std::size_t robot, double first_radius) 
   for (;;) {
     found.clear();
     radio_.for_each_mobile_within(p, r, [&](NodeId id) {
-      if (id != robot_node(robot)) found.push_back({(robots_[sim::index(id)]->state().position - p).squaredNorm(), id});
+      if (id != robot_node(robot))
+        found.push_back({(robots_[sim::index(id)]->state().position - p).squaredNorm(), id});
     });
     // Nearest first, ties by id: the first few clips shrink the cell and the farther candidates
     // are dismissed by one distance test each; and the order (so the last bits of the cell)
     // does not depend on when the radio last rebuilt its mobile index.
-    std::sort(found.begin(), found.end(), [](const Site& a, const Site& b) { return a.d2 < b.d2 || (a.d2 == b.d2 && a.node < b.node); });
+    std::sort(found.begin(), found.end(), [](const Site& a, const Site& b) {
+      return a.d2 < b.d2 || (a.d2 == b.d2 && a.node < b.node);
+    });
     sites.assign(1, p);
     site_nodes.assign(1, robot_node(robot));
     for (const Site& site : found) {
@@ -323,14 +349,16 @@ protocols::RobotCell World::oracle_cell(std::size_t robot, double first_radius) 
       site_nodes.push_back(site.node);
     }
     candidates.clear();
-    for (std::uint32_t i = 1; i < sites.size(); ++i) candidates.push_back(i);
+    for (std::uint32_t i = 1; i < sites.size(); ++i)
+      candidates.push_back(i);
     cell = protocols::voronoi_cell(0, sites, candidates, def_.domain);
     if (r >= 2.0 * protocols::max_vertex_distance(cell.polygon, p) || r >= span) break;
     r *= 2.0;
   }
   protocols::RobotCell out;
   out.polygon = std::move(cell.polygon);
-  for (std::uint32_t i : cell.neighbours) out.neighbours.push_back(site_nodes[i]);
+  for (std::uint32_t i : cell.neighbours)
+    out.neighbours.push_back(site_nodes[i]);
   std::sort(out.neighbours.begin(), out.neighbours.end());
   return out;
 }
@@ -352,9 +380,10 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
       lo = lo.cwiseMin(v);
       hi = hi.cwiseMax(v);
     }
-    sensor_grid_.for_each_within(0.5 * (lo + hi), 0.5 * (hi - lo).norm(), [&](NodeId id, const Vec2& s, double) {
-      if (protocols::contains(cell, s)) take(id, s);
-    });
+    sensor_grid_.for_each_within(0.5 * (lo + hi), 0.5 * (hi - lo).norm(),
+                                 [&](NodeId id, const Vec2& s, double) {
+                                   if (protocols::contains(cell, s)) take(id, s);
+                                 });
     return inside;
   }
   // Sensor rows: the cell meets each row in one interval, whose ends the slicer gives within
@@ -366,30 +395,35 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
   // On evenly spaced rows the sensors between xl + margin and xr − margin come from O(1) slot
   // estimates when no sensor is near either end (LineIndex::sure_slots): all of them are inside,
   // and the guard of 2·margin puts every other sensor beyond the exact ends, outside.
-  const bool sure_rows = sensor_lines_.slot_estimates_are_sure(slicer_.max_abs_x() + 2.0 * margin, 2.0 * margin);
+  const bool sure_rows =
+      sensor_lines_.slot_estimates_are_sure(slicer_.max_abs_x() + 2.0 * margin, 2.0 * margin);
   pending_rows_.clear();
-  sensor_lines_.for_each_line_between(slicer_.y_min(), slicer_.y_max(), [&](std::size_t line, double y, std::uint32_t begin, std::uint32_t end) {
-    const auto [xl, xr] = slicer_.extent(y);
-    if (!(xl <= xr + 2.0 * margin)) return;
-    std::uint32_t a, c;
-    const bool sure = sure_rows && xl + margin <= xr - margin && sensor_lines_.sure_slots(line, xl + margin, xr - margin, a, c);
-    if (!sure) {  // the exact search starts one slot before the guess and ends one past the right end
-      a = sensor_lines_.guess_at_or_after(line, xl - margin);
-      c = sensor_lines_.guess_at_or_after(line, xr);
-    }
-    __builtin_prefetch(&sensor_lines_.x(a > begin ? a - 1 : begin));
-    __builtin_prefetch(&sensor_lines_.x(c < end ? c : end - 1));
-    // Field by field into the vector: a temporary copied in whole makes the compiler reload
-    // it across two stores, which the CPU cannot forward (a stall per row).
-    PendingRow& row = pending_rows_.emplace_back();
-    row.line = line;
-    row.y = y;
-    row.left = xl;
-    row.right = xr;
-    row.first = a;
-    row.last = c;
-    row.sure = sure;
-  });
+  sensor_lines_.for_each_line_between(
+      slicer_.y_min(), slicer_.y_max(),
+      [&](std::size_t line, double y, std::uint32_t begin, std::uint32_t end) {
+        const auto [xl, xr] = slicer_.extent(y);
+        if (!(xl <= xr + 2.0 * margin)) return;
+        std::uint32_t a, c;
+        const bool sure = sure_rows && xl + margin <= xr - margin &&
+                          sensor_lines_.sure_slots(line, xl + margin, xr - margin, a, c);
+        if (!sure) {  // the exact search starts one slot before the guess and ends one past the
+                      // right end
+          a = sensor_lines_.guess_at_or_after(line, xl - margin);
+          c = sensor_lines_.guess_at_or_after(line, xr);
+        }
+        __builtin_prefetch(&sensor_lines_.x(a > begin ? a - 1 : begin));
+        __builtin_prefetch(&sensor_lines_.x(c < end ? c : end - 1));
+        // Field by field into the vector: a temporary copied in whole makes the compiler reload
+        // it across two stores, which the CPU cannot forward (a stall per row).
+        PendingRow& row = pending_rows_.emplace_back();
+        row.line = line;
+        row.y = y;
+        row.left = xl;
+        row.right = xr;
+        row.first = a;
+        row.last = c;
+        row.sure = sure;
+      });
   const bool row_wise = def_.sensor_noise_sigma <= 0.0 && uniform_sensor_area_ > 0.0 && !diffusion_;
   const std::optional<double> uniform = field_.uniform_value();
   const std::vector<NodeId>& ids = sensor_lines_.ids();
@@ -404,27 +438,33 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
         return slicer_.contains_on_row(cell.vertices, Vec2{sensor_lines_.x(k), y}, xl, xr);
       };
       // Exact at the ends; everything between is inside (convexity).
-      while (first < last && !inside_at(first)) ++first;
-      while (last > first && !inside_at(last - 1)) --last;
+      while (first < last && !inside_at(first))
+        ++first;
+      while (last > first && !inside_at(last - 1))
+        --last;
     }
     if (first >= last) continue;
     // Without noise and with equal areas a reading needs only the position: evaluate the row in
     // one call and stream through its coordinates, never touching per-sensor records.
     if (row_wise && uniform) {
-      accumulator.add_row_uniform(y, &sensor_lines_.x(first), last - first, *uniform, uniform_sensor_area_);
+      accumulator.add_row_uniform(y, &sensor_lines_.x(first), last - first, *uniform,
+                                  uniform_sensor_area_);
       readings_taken_ += last - first;
       inside += last - first;
       continue;
     }
     if (row_wise) {
       row_buffer_.resize(last - first);
-      field_.row_values(y, &sensor_lines_.x(first), last - first, sim::to_seconds(simulator_.now()), row_buffer_.data());
-      accumulator.add_row(y, &sensor_lines_.x(first), row_buffer_.data(), last - first, uniform_sensor_area_);
+      field_.row_values(y, &sensor_lines_.x(first), last - first, sim::to_seconds(simulator_.now()),
+                        row_buffer_.data());
+      accumulator.add_row(y, &sensor_lines_.x(first), row_buffer_.data(), last - first,
+                          uniform_sensor_area_);
       readings_taken_ += last - first;
       inside += last - first;
       continue;
     }
-    for (std::uint32_t k = first; k < last; ++k) take(ids[k], Vec2{sensor_lines_.x(k), y});
+    for (std::uint32_t k = first; k < last; ++k)
+      take(ids[k], Vec2{sensor_lines_.x(k), y});
   }
   return inside;
 }
@@ -450,12 +490,14 @@ void World::on_battery_empty(NodeId node) {
 
 Vec2 World::position(NodeId node) const {
   const std::size_t i = sim::index(node);
-  return i < robots_.size() ? robots_[i]->state().position : def_.sensors[i - robots_.size()].position;
+  return i < robots_.size() ? robots_[i]->state().position
+                            : def_.sensors[i - robots_.size()].position;
 }
 
 double World::speed_bound() const {
   double bound = 0.0;
-  for (const auto& robot : robots_) bound = std::max(bound, robot->segment().speed_bound());
+  for (const auto& robot : robots_)
+    bound = std::max(bound, robot->segment().speed_bound());
   return bound;
 }
 

@@ -36,8 +36,8 @@ struct BeaconDef {
   double range = 0.2;  ///< world units
 };
 
-/// The robots' dispensers (paper §VI-B; docs/field-models.md): f_c = −k_s · (mean reading of the sensors in
-/// the robot's cell that lie within spray_radius of it), magnitude capped at max_rate.
+/// The robots' dispensers (paper §VI-B; docs/field-models.md): f_c = −k_s · (mean reading of the
+/// sensors in the robot's cell that lie within spray_radius of it), magnitude capped at max_rate.
 enum class SprayReadings {
   live,         ///< the current values of those sensors (what Diff-MAS2D did)
   last_update,  ///< the readings the robot received in its last protocol update
@@ -93,7 +93,9 @@ class World final : public net::RadioListener, public net::MobilePositions {
   net::Radio& radio() { return radio_; }
   std::size_t robot_count() const { return robots_.size(); }
   std::size_t sensor_count() const { return def_.sensors.size(); }
-  NodeId robot_node(std::size_t robot) const { return sim::node_id(static_cast<std::uint32_t>(robot)); }
+  NodeId robot_node(std::size_t robot) const {
+    return sim::node_id(static_cast<std::uint32_t>(robot));
+  }
   NodeId sensor_node(std::size_t sensor) const {
     return sim::node_id(static_cast<std::uint32_t>(robots_.size() + sensor));
   }
@@ -110,7 +112,8 @@ class World final : public net::RadioListener, public net::MobilePositions {
   protocols::RobotCell oracle_cell(std::size_t robot, double first_radius = 0.0);
   /// Adds every sensor inside `cell` with its reading now to `accumulator` (the oracle's
   /// sensing pass; no messages); returns how many.
-  std::uint32_t read_sensors_in(const protocols::ConvexPolygon& cell, protocols::CentroidAccumulator& accumulator);
+  std::uint32_t read_sensors_in(const protocols::ConvexPolygon& cell,
+                                protocols::CentroidAccumulator& accumulator);
   /// Positions of the field's moving entities now (targets, bump centres).
   std::vector<Vec2> source_positions() const;
   std::uint64_t clamped_readings() const { return field_.clamped_readings(); }

@@ -5,7 +5,8 @@
 
 namespace masnet::net {
 
-bool LineIndex::build(std::span<const Vec2> positions, std::span<const sim::NodeId> ids, double min_mean_length) {
+bool LineIndex::build(std::span<const Vec2> positions, std::span<const sim::NodeId> ids,
+                      double min_mean_length) {
   lines_.clear();
   max_abs_x_ = max_inv_dx_ = 0.0;
   max_even_count_ = 0;
@@ -23,7 +24,8 @@ bool LineIndex::build(std::span<const Vec2> positions, std::span<const sim::Node
     return positions[a].x() < positions[b].x();
   });
   std::size_t line_count = 1;
-  for (std::size_t k = 1; k < n; ++k) line_count += positions[order[k]].y() != positions[order[k - 1]].y() ? 1 : 0;
+  for (std::size_t k = 1; k < n; ++k)
+    line_count += positions[order[k]].y() != positions[order[k - 1]].y() ? 1 : 0;
   if (static_cast<double>(n) / static_cast<double>(line_count) < min_mean_length) return false;
 
   xs_.resize(n);
@@ -36,8 +38,10 @@ bool LineIndex::build(std::span<const Vec2> positions, std::span<const sim::Node
   }
   for (std::uint32_t begin = 0; begin < n;) {
     std::uint32_t end = begin + 1;
-    while (end < n && ys_[end] == ys_[begin]) ++end;
-    Line line{ys_[begin], begin, end, xs_[begin], 0.0, static_cast<double>(end - begin) - 0.5, false};
+    while (end < n && ys_[end] == ys_[begin])
+      ++end;
+    Line line{ys_[begin], begin, end, xs_[begin], 0.0, static_cast<double>(end - begin) - 0.5,
+              false};
     const std::uint32_t count = end - begin;
     if (count >= 2) {
       // Evenly spaced (to 1e-9 of the spacing): slot estimates are then exact up to ±1, and the
@@ -58,7 +62,8 @@ bool LineIndex::build(std::span<const Vec2> positions, std::span<const sim::Node
     begin = end;
   }
   uniform_x_ = std::all_of(lines_.begin(), lines_.end(), [&](const Line& line) {
-    return line.even && line.x0 == lines_[0].x0 && line.inv_dx == lines_[0].inv_dx && line.last_half == lines_[0].last_half;
+    return line.even && line.x0 == lines_[0].x0 && line.inv_dx == lines_[0].inv_dx &&
+           line.last_half == lines_[0].last_half;
   });
   if (uniform_x_) {
     uniform_x0_ = lines_[0].x0;

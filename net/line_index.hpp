@@ -23,7 +23,8 @@ class LineIndex {
  public:
   /// Indexes the points if they form lines of at least `min_mean_length` points on average;
   /// returns false (and stays empty) otherwise.
-  bool build(std::span<const Vec2> positions, std::span<const sim::NodeId> ids, double min_mean_length = 8.0);
+  bool build(std::span<const Vec2> positions, std::span<const sim::NodeId> ids,
+             double min_mean_length = 8.0);
 
   /// Points in line-major order: slot k holds ids()[k].
   const std::vector<sim::NodeId>& ids() const { return ids_; }
@@ -39,13 +40,17 @@ class LineIndex {
   }
   /// A guess at first_at_or_after(line, value) that reads no coordinates (exact for evenly
   /// spaced lines but for rounding): where to prefetch before the exact search.
-  std::uint32_t guess_at_or_after(std::size_t line, double value) const { return estimate(lines_[line], value, true); }
+  std::uint32_t guess_at_or_after(std::size_t line, double value) const {
+    return estimate(lines_[line], value, true);
+  }
   /// First slot of `line` whose x is >= value (the line's end if none).
   std::uint32_t first_at_or_after(std::size_t line, double value) const {
     const Line& l = lines_[line];
     std::uint32_t k = estimate(l, value, true);
-    while (k > l.begin && xs_[k - 1] >= value) --k;
-    while (k < l.end && xs_[k] < value) ++k;
+    while (k > l.begin && xs_[k - 1] >= value)
+      --k;
+    while (k < l.end && xs_[k] < value)
+      ++k;
     return k;
   }
 
@@ -60,13 +65,15 @@ class LineIndex {
   /// whose points must moreover be more than `guard` (world units) from either end: a bound on
   /// the rounding of the slot estimates, and the guard, both well below the sure margin.
   bool slot_estimates_are_sure(double extent, double guard) const {
-    return estimate_rounding(extent) <= 0.25 * kSureMargin && guard * max_inv_dx_ <= 0.25 * kSureMargin;  // false on NaN
+    return estimate_rounding(extent) <= 0.25 * kSureMargin &&
+           guard * max_inv_dx_ <= 0.25 * kSureMargin;  // false on NaN
   }
   /// The slots [a, c) of `line` whose x lie in [lo, hi], from O(1) estimates, when the line is
   /// evenly spaced and both ends lie at least kSureMargin (in slots) from every point; false
   /// otherwise. Call only when slot_estimates_are_sure(extent, guard) holds for the ends: every
   /// point outside [a, c) is then also more than `guard` outside [lo, hi].
-  bool sure_slots(std::size_t line, double lo, double hi, std::uint32_t& a, std::uint32_t& c) const {
+  bool sure_slots(std::size_t line, double lo, double hi, std::uint32_t& a,
+                  std::uint32_t& c) const {
 #if defined(__SSE2__)
     const Line& l = lines_[line];
     return l.even && sure_slots_of_ends(l, _mm_set_pd(hi, lo), a, c);
@@ -83,19 +90,23 @@ class LineIndex {
   /// would be reloaded after every write the caller makes through a pointer). Returns the number
   /// of slots in the runs, so a visitor need not count (small visitors travel in registers).
   template <class Visit, class Prefetch>
-  std::uint64_t for_each_run_within(const Vec2& center, double radius, Visit visit, Prefetch prefetch) const {
+  std::uint64_t for_each_run_within(const Vec2& center, double radius, Visit visit,
+                                    Prefetch prefetch) const {
     // A sensor grid's lines all share one spacing and start: its constants then stay in
     // registers instead of being loaded (and broadcast) line by line.
-    return uniform_x_ ? runs_within<true>(center, radius, visit, prefetch) : runs_within<false>(center, radius, visit, prefetch);
+    return uniform_x_ ? runs_within<true>(center, radius, visit, prefetch)
+                      : runs_within<false>(center, radius, visit, prefetch);
   }
   template <class Visit>
   std::uint64_t for_each_run_within(const Vec2& center, double radius, Visit&& visit) const {
-    return for_each_run_within(center, radius, std::forward<Visit>(visit), [](std::uint32_t, std::uint32_t) {});
+    return for_each_run_within(center, radius, std::forward<Visit>(visit),
+                               [](std::uint32_t, std::uint32_t) {});
   }
 
  private:
   template <bool kUniform, class Visit, class Prefetch>
-  std::uint64_t runs_within(const Vec2& center, double radius, Visit visit, Prefetch prefetch) const {
+  std::uint64_t runs_within(const Vec2& center, double radius, Visit visit,
+                            Prefetch prefetch) const {
     std::uint64_t covered = 0;
     if (lines_.empty() || !(radius >= 0.0)) return covered;
     const double r2 = radius * radius, cx = center.x(), cy = center.y();
@@ -106,7 +117,8 @@ class LineIndex {
     const std::size_t lo = first_line_at_or_above(cy - radius - slack);
     const bool sure_estimates = estimates_are_sure(cx, radius);
 #if defined(__SSE2__)
-    const __m128d uniform_x0 = _mm_set1_pd(uniform_x0_), uniform_inv_dx = _mm_set1_pd(uniform_inv_dx_);
+    const __m128d uniform_x0 = _mm_set1_pd(uniform_x0_),
+                  uniform_inv_dx = _mm_set1_pd(uniform_inv_dx_);
     const __m128d uniform_last_half = _mm_set1_pd(uniform_last_half_);
 #endif
     const double min_sure_half = radius * kMinSureHalf;
@@ -133,10 +145,12 @@ class LineIndex {
         if constexpr (kUniform) {
 #if defined(__SSE2__)
           sure = sure_estimates && half >= min_sure_half &&
-                 sure_slots_of_ends(line.begin, chord_ends(cx, half), uniform_x0, uniform_inv_dx, uniform_last_half, a, c);
+                 sure_slots_of_ends(line.begin, chord_ends(cx, half), uniform_x0, uniform_inv_dx,
+                                    uniform_last_half, a, c);
 #endif
         } else {
-          sure = sure_estimates && line.even && half >= min_sure_half && sure_run(line, cx, half, a, c);
+          sure = sure_estimates && line.even && half >= min_sure_half &&
+                 sure_run(line, cx, half, a, c);
         }
         if (!sure) {
           // Starting points only: the steps below are exact.
@@ -164,11 +178,15 @@ class LineIndex {
           };
           // From the estimate (exact for evenly spaced lines) step with the exact test: the run
           // is where `inside` holds, an interval of the sorted line.
-          while (a > line.begin && inside(a - 1)) --a;
-          while (a < line.end && !inside(a) && xs[a] < cx) ++a;
+          while (a > line.begin && inside(a - 1))
+            --a;
+          while (a < line.end && !inside(a) && xs[a] < cx)
+            ++a;
           if (c < a) c = a;
-          while (c < line.end && inside(c)) ++c;
-          while (c > a && !inside(c - 1)) --c;
+          while (c < line.end && inside(c))
+            ++c;
+          while (c > a && !inside(c - 1))
+            --c;
         }
         if (a < c) {
           visit(a, c);
@@ -203,19 +221,22 @@ class LineIndex {
   /// build); 16u·(span + max|x|)·inv_dx the rounding of the value, of its offset from the line's
   /// start and of the product by inv_dx; 4u·count the shift by one.
   double estimate_rounding(double span) const {
-    return 1e-8 + kUlp * (max_inv_dx_ * 16.0 * (span + max_abs_x_) + 4.0 * (static_cast<double>(max_even_count_) + 2.0));
+    return 1e-8 + kUlp * (max_inv_dx_ * 16.0 * (span + max_abs_x_) +
+                          4.0 * (static_cast<double>(max_even_count_) + 2.0));
   }
   /// Whether sure_run may be used for a disk at x = cx with this radius: the estimates' rounding
   /// for chord ends within |cx| + r, plus 4096u·r·inv_dx for the float test's own uncertainty
   /// (about 2.3u·r²/half with half >= r/1024), well below the margin.
   bool estimates_are_sure(double cx, double radius) const {
-    const double rounding = estimate_rounding(std::fabs(cx) + radius) + kUlp * max_inv_dx_ * 4096.0 * radius;
+    const double rounding =
+        estimate_rounding(std::fabs(cx) + radius) + kUlp * max_inv_dx_ * 4096.0 * radius;
     return rounding <= 0.25 * kSureMargin;  // false on NaN
   }
 
   /// The run [a, c) of an evenly spaced line inside the chord [cx − half, cx + half], if both
   /// ends lie at least kSureMargin from a slot; false otherwise. Both ends in one SSE2 register.
-  static bool sure_run(const Line& line, double cx, double half, std::uint32_t& a, std::uint32_t& c) {
+  static bool sure_run(const Line& line, double cx, double half, std::uint32_t& a,
+                       std::uint32_t& c) {
 #if !defined(__SSE2__)
     return false;  // the exact steps do it all
 #else
@@ -229,12 +250,14 @@ class LineIndex {
   }
   /// The slots [a, c) of an evenly spaced line between ends = {left, right}, if both lie at least
   /// kSureMargin from a slot.
-  static bool sure_slots_of_ends(const Line& line, __m128d ends, std::uint32_t& a, std::uint32_t& c) {
-    return sure_slots_of_ends(line.begin, ends, _mm_set1_pd(line.x0), _mm_set1_pd(line.inv_dx), _mm_set1_pd(line.last_half), a, c);
+  static bool sure_slots_of_ends(const Line& line, __m128d ends, std::uint32_t& a,
+                                 std::uint32_t& c) {
+    return sure_slots_of_ends(line.begin, ends, _mm_set1_pd(line.x0), _mm_set1_pd(line.inv_dx),
+                              _mm_set1_pd(line.last_half), a, c);
   }
   /// The same from the line's first slot and its constants, each in both lanes.
-  static bool sure_slots_of_ends(std::uint32_t begin, __m128d ends, __m128d x0, __m128d inv_dx, __m128d last_half,
-                                 std::uint32_t& a, std::uint32_t& c) {
+  static bool sure_slots_of_ends(std::uint32_t begin, __m128d ends, __m128d x0, __m128d inv_dx,
+                                 __m128d last_half, std::uint32_t& a, std::uint32_t& c) {
     __m128d k = _mm_mul_pd(_mm_sub_pd(ends, x0), inv_dx);
     // Clamped to the line (a chord end beyond it is half a slot past the end slot), then
     // shifted by one: truncation is then floor, and floor(k + 1) = ceil(k) = floor(k) + 1 for
@@ -243,8 +266,10 @@ class LineIndex {
     k = _mm_add_pd(k, _mm_set1_pd(1.0));
     const __m128i slots = _mm_cvttpd_epi32(k);
     const __m128d fraction = _mm_sub_pd(k, _mm_cvtepi32_pd(slots));
-    const __m128d from_middle = _mm_andnot_pd(_mm_set1_pd(-0.0), _mm_sub_pd(fraction, _mm_set1_pd(0.5)));
-    if (_mm_movemask_pd(_mm_cmple_pd(from_middle, _mm_set1_pd(0.5 - kSureMargin))) != 3) return false;
+    const __m128d from_middle =
+        _mm_andnot_pd(_mm_set1_pd(-0.0), _mm_sub_pd(fraction, _mm_set1_pd(0.5)));
+    if (_mm_movemask_pd(_mm_cmple_pd(from_middle, _mm_set1_pd(0.5 - kSureMargin))) != 3)
+      return false;
     a = begin + static_cast<std::uint32_t>(_mm_cvtsi128_si32(slots));
     c = begin + static_cast<std::uint32_t>(_mm_cvtsi128_si32(_mm_shuffle_epi32(slots, 1)));
     return true;
@@ -259,15 +284,20 @@ class LineIndex {
     if (lines_even_) {
       const double k = (value - lines_[0].y) * inv_line_dy_;
       l = !(k > 0.0) ? 0 : k >= static_cast<double>(count) ? count : static_cast<std::size_t>(k);
-      while (l > 0 && lines_[l - 1].y >= value) --l;
-      while (l < count && lines_[l].y < value) ++l;
+      while (l > 0 && lines_[l - 1].y >= value)
+        --l;
+      while (l < count && lines_[l].y < value)
+        ++l;
       return l;
     }
     std::size_t hi = count;
     l = 0;
     while (l < hi) {
       const std::size_t mid = (l + hi) / 2;
-      if (lines_[mid].y < value) l = mid + 1; else hi = mid;
+      if (lines_[mid].y < value)
+        l = mid + 1;
+      else
+        hi = mid;
     }
     return l;
   }
@@ -289,7 +319,10 @@ class LineIndex {
     std::uint32_t lo = line.begin, hi = line.end;
     while (lo < hi) {
       const std::uint32_t mid = lo + (hi - lo) / 2;
-      if (from_left ? xs_[mid] < x : xs_[mid] <= x) lo = mid + 1; else hi = mid;
+      if (from_left ? xs_[mid] < x : xs_[mid] <= x)
+        lo = mid + 1;
+      else
+        hi = mid;
     }
     return lo;
   }
@@ -298,7 +331,8 @@ class LineIndex {
   // For the rounding bound of sure estimates (0 / 0 / 0 when no line is evenly spaced).
   double max_abs_x_ = 0.0, max_inv_dx_ = 0.0;
   std::uint32_t max_even_count_ = 0;
-  bool lines_even_ = false;  // line y evenly spaced (to 1e-9 of the spacing): see first_line_at_or_above
+  bool lines_even_ =
+      false;  // line y evenly spaced (to 1e-9 of the spacing): see first_line_at_or_above
   // Every line evenly spaced with the same start, spacing and length (a grid's rows): their
   // common x0, inv_dx and last_half.
   bool uniform_x_ = false;

@@ -1,6 +1,7 @@
 #pragma once
 // Message value types: a std::variant of payload structs, each with an
-// explicit size in bytes (docs/radio-and-energy.md). The radio knows these formats, never protocol logic.
+// explicit size in bytes (docs/radio-and-energy.md). The radio knows these formats, never protocol
+// logic.
 #include <array>
 #include <cstdint>
 #include <string_view>
@@ -59,7 +60,15 @@ struct Reading {
 using Payload = std::variant<Beacon, Position, Report, Discover, Neighbor, Sense, Reading>;
 
 /// The message types, in variant order; used as array indices for counters.
-enum class MessageType : std::uint8_t { beacon, position, report, discover, neighbor, sense, reading };
+enum class MessageType : std::uint8_t {
+  beacon,
+  position,
+  report,
+  discover,
+  neighbor,
+  sense,
+  reading
+};
 inline constexpr std::size_t kMessageTypeCount = std::variant_size_v<Payload>;
 
 inline constexpr std::array<std::string_view, kMessageTypeCount> kMessageTypeNames = {
@@ -72,7 +81,8 @@ inline std::string_view name_of(MessageType type) {
   return kMessageTypeNames[static_cast<std::size_t>(type)];
 }
 
-/// Field sizes on the air (bytes). Defaults: docs/decisions/0004-radio-timing-and-sizes.md; all configurable (`radio.sizes`).
+/// Field sizes on the air (bytes). Defaults: docs/decisions/0004-radio-timing-and-sizes.md; all
+/// configurable (`radio.sizes`).
 struct MessageSizes {
   std::uint32_t header_bytes = 8;       ///< MAC/PHY header and frame check
   std::uint32_t id_bytes = 2;           ///< a node id

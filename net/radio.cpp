@@ -23,14 +23,16 @@ Radio::Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t
   // Per-frame constants, computed once (each costs a rounding call or a square root).
   crossover_m_ = params_.energy.crossover_m();
   latency_ = sim::seconds(params_.latency_s);
-  for (std::uint32_t bytes = 0; bytes < kAirtimeTableBytes; ++bytes) airtime_table_[bytes] = compute_airtime(bytes);
+  for (std::uint32_t bytes = 0; bytes < kAirtimeTableBytes; ++bytes)
+    airtime_table_[bytes] = compute_airtime(bytes);
 }
 
 Radio::~Radio() {
   if (!overhearing_thread_.joinable()) return;
   drain_overhearing();
   stop_worker_.store(true, std::memory_order_release);
-  jobs_published_.fetch_add(1, std::memory_order_release);  // an empty hand-over wakes it to see the stop
+  jobs_published_.fetch_add(
+      1, std::memory_order_release);  // an empty hand-over wakes it to see the stop
   jobs_published_.notify_one();
   overhearing_thread_.join();
 }
@@ -48,7 +50,8 @@ void Radio::add_node(NodeId id, Node node, bool mobile, const Vec2& position) {
 }
 
 void Radio::add_static_node(NodeId id, const Vec2& position, std::uint64_t random_key) {
-  MASNET_ASSERT(std::isfinite(position.x()) && std::isfinite(position.y()), "static nodes stand somewhere");
+  MASNET_ASSERT(std::isfinite(position.x()) && std::isfinite(position.y()),
+                "static nodes stand somewhere");
   static_ids_.push_back(id);
   Node node;
   node.random_key = random_key;
@@ -95,24 +98,30 @@ bool Radio::unicast(NodeId source, NodeId destination, Payload payload) {
   return transmit(source, destination, distance, std::move(payload), distance);
 }
 
-[[gnu::always_inline]] inline std::uint64_t Radio::book_overhearing(const OverhearingJob& job) const {
+[[gnu::always_inline]] inline std::uint64_t Radio::book_overhearing(
+    const OverhearingJob& job) const {
   std::uint64_t* const heard_diff = heard_diff_.data();
   const std::uint64_t booking = job.booking;
   const Vec2 center{job.cx, job.cy};
   // Overhearing is one packed word per run end, each prefetched with the line's estimate. The
   // lambdas capture no references, so nothing is reloaded after each write.
-  std::uint64_t hearers = line_index_.for_each_run_within(center, job.range, [heard_diff, booking](std::uint32_t a, std::uint32_t c) {
-    heard_diff[a] += booking;
-    heard_diff[c] -= booking;
-  }, [heard_diff](std::uint32_t a, std::uint32_t c) {
-    __builtin_prefetch(heard_diff + a, 1);
-    __builtin_prefetch(heard_diff + c, 1);
-  });
+  std::uint64_t hearers = line_index_.for_each_run_within(
+      center, job.range,
+      [heard_diff, booking](std::uint32_t a, std::uint32_t c) {
+        heard_diff[a] += booking;
+        heard_diff[c] -= booking;
+      },
+      [heard_diff](std::uint32_t a, std::uint32_t c) {
+        __builtin_prefetch(heard_diff + a, 1);
+        __builtin_prefetch(heard_diff + c, 1);
+      });
   // The runs included the sender (at the center: in every run of a valid range) and maybe a
   // static addressee: take them out again, as runs of one slot in the words just written.
   const auto static_count = static_cast<std::uint32_t>(static_ids_.size());
   for (const std::uint32_t hot : {job.source_hot, job.destination_hot}) {
-    if (hot >= static_count || !(hot == job.source_hot ? job.range >= 0.0 : line_index_.within(hot, center, job.range))) continue;
+    if (hot >= static_count ||
+        !(hot == job.source_hot ? job.range >= 0.0 : line_index_.within(hot, center, job.range)))
+      continue;
     heard_diff[hot] -= booking;
     heard_diff[hot + 1] += booking;
     --hearers;
@@ -129,7 +138,8 @@ void Radio::start_overhearing_thread() {
 }
 
 void Radio::wait_until_worker_behind_at_most(std::uint32_t behind) const {
-  const std::uint32_t published = jobs_published_.load(std::memory_order_relaxed);  // only this thread writes it
+  const std::uint32_t published =
+      jobs_published_.load(std::memory_order_relaxed);  // only this thread writes it
   std::uint32_t booked = jobs_booked_.load(std::memory_order_acquire);
   for (std::uint32_t spin = 0; published - booked > behind && spin < spin_limit_; ++spin) {
     pause_briefly();
@@ -187,9 +197,11 @@ void Radio::drain_overhearing() const {
 
 const std::vector<Vec2>& Radio::mobile_positions_now() {
   const sim::Time now = simulator_.now();
-  if (!mobile_cache_valid_ || mobile_cache_time_ != now || mobile_cache_.size() != mobile_ids_.size()) {
+  if (!mobile_cache_valid_ || mobile_cache_time_ != now ||
+      mobile_cache_.size() != mobile_ids_.size()) {
     mobile_cache_.resize(mobile_ids_.size());
-    for (std::size_t m = 0; m < mobile_ids_.size(); ++m) mobile_cache_[m] = mobile_->position(mobile_ids_[m]);
+    for (std::size_t m = 0; m < mobile_ids_.size(); ++m)
+      mobile_cache_[m] = mobile_->position(mobile_ids_[m]);
     mobile_cache_time_ = now;
     mobile_cache_valid_ = true;
   }
@@ -202,7 +214,8 @@ void Radio::prepare_mobile_index() {
   if (mobile_index_valid_ && margin_speed_ * age_s <= 0.5 * mobile_grid_.cell_size()) return;
   std::vector<Vec2> positions;
   positions.reserve(mobile_ids_.size());
-  for (NodeId id : mobile_ids_) positions.push_back(mobile_->position(id));
+  for (NodeId id : mobile_ids_)
+    positions.push_back(mobile_->position(id));
   mobile_grid_.build(positions, mobile_ids_);
   mobile_index_time_ = now;
   ++mobile_index_generation_;
@@ -213,7 +226,8 @@ void Radio::prepare_mobile_index() {
 const Radio::NearAddressee* Radio::near_addressee(NodeId addressee, double extent) {
   const double needed = extent * (1.0 + 1e-9);  // covers the rounding of the distances summed
   const sim::Time now = simulator_.now();
-  if (!(near_.addressee == addressee && near_.at == now && near_.index_generation == mobile_index_generation_)) {
+  if (!(near_.addressee == addressee && near_.at == now &&
+        near_.index_generation == mobile_index_generation_)) {
     // The first frame to this addressee now: most are the only one (a NEIGHBOR), and walking
     // the grid once is cheaper than gathering the neighbourhood. Remember it, gather on the next.
     near_.addressee = addressee;
@@ -228,11 +242,12 @@ const Radio::NearAddressee* Radio::near_addressee(NodeId addressee, double exten
   near_.xs.clear();
   near_.ys.clear();
   near_.ids.clear();
-  mobile_grid_.for_each_within(position(addressee), near_.reach, [&](NodeId id, const Vec2& indexed, double) {
-    near_.xs.push_back(indexed.x());
-    near_.ys.push_back(indexed.y());
-    near_.ids.push_back(id);
-  });
+  mobile_grid_.for_each_within(position(addressee), near_.reach,
+                               [&](NodeId id, const Vec2& indexed, double) {
+                                 near_.xs.push_back(indexed.x());
+                                 near_.ys.push_back(indexed.y());
+                                 near_.ids.push_back(id);
+                               });
   return &near_;
 }
 
@@ -263,7 +278,9 @@ void Radio::schedule_depletion(NodeId id) {
   const std::uint32_t hot = hot_[sim::index(id)];
   const double remaining =
       params_.energy.battery_j - senders_[sim::index(id)].energy_tx_j - idle_j(node) -
-      (hot == kNoHotIndex ? 0.0 : rx_energy_j(params_.energy, 8.0 * static_cast<double>(heard_bytes_[hot])));
+      (hot == kNoHotIndex
+           ? 0.0
+           : rx_energy_j(params_.energy, 8.0 * static_cast<double>(heard_bytes_[hot])));
   simulator_.cancel(node.depletion_event);
   // The idle drain empties the battery at a known time: a scheduled event, not a poll.
   const sim::Duration left = sim::seconds(std::max(remaining, 0.0) / params_.energy.idle_power_w);
@@ -284,7 +301,8 @@ void Radio::kill(NodeId id) {  // the battery is empty
   if (listener_) listener_->on_battery_empty(id);
 }
 
-bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& payload, double destination_distance) {
+bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& payload,
+                     double destination_distance) {
   if (index_dirty_) prepare_index();
   const std::size_t source_index = sim::index(source);
   const bool battery = battery_limited();
@@ -300,7 +318,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   const MessageType type = type_of(payload);
   const std::uint32_t bytes = size_bytes(payload, params_.sizes);
   const double bits = 8.0 * bytes;
-  const double tx_j = tx_energy_j(params_.energy, bits, range * params_.meters_per_unit, crossover_m_);
+  const double tx_j =
+      tx_energy_j(params_.energy, bits, range * params_.meters_per_unit, crossover_m_);
   if (battery && !afford(source, tx_j)) {
     ++nodes_[source_index].refused_count;
     mix_refusal(source);
@@ -349,7 +368,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     if (drains) schedule_depletion(id);  // the idle drain now ends sooner
     if (params_.loss > 0) {
       Node& node = nodes_[sim::index(id)];
-      if (sim::keyed_uniform01(seed_, kLossPurpose, nodes_[source_index].random_key, node.random_key, frame_number) < params_.loss) {
+      if (sim::keyed_uniform01(seed_, kLossPurpose, nodes_[source_index].random_key,
+                               node.random_key, frame_number) < params_.loss) {
         ++node.lost_count;
         ++lost;
         return;
@@ -371,7 +391,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   const Vec2 center = position(source);
   // Hot indices compared instead of ids: the inner loops load nothing but coordinates.
   const std::uint32_t source_hot = hot_[source_index];
-  const std::uint32_t destination_hot = destination == sim::kNoNode ? kNoHotIndex : hot_[sim::index(destination)];
+  const std::uint32_t destination_hot =
+      destination == sim::kNoNode ? kNoHotIndex : hot_[sim::index(destination)];
   const std::uint32_t static_count = static_cast<std::uint32_t>(static_ids_.size());
   const bool is_broadcast = destination == sim::kNoNode;
   // Booked in bulk whenever no reception can fail (no battery, no loss): energy and counters
@@ -381,10 +402,13 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   const bool everyone_wants = (static_interest_common_ & type_bit) != 0;  // no per-node check
   if (use_lines_) {
     const NodeId* const slots = line_index_.ids().data();
-    std::uint64_t* const count_diff = rx_count_diff_.data() + type_index * (static_cast<std::size_t>(heard_bytes_.size()) + 1);
-    std::uint64_t* const bytes_diff = rx_bytes_diff_.data() + type_index * (static_cast<std::size_t>(heard_bytes_.size()) + 1);
+    std::uint64_t* const count_diff =
+        rx_count_diff_.data() + type_index * (static_cast<std::size_t>(heard_bytes_.size()) + 1);
+    std::uint64_t* const bytes_diff =
+        rx_bytes_diff_.data() + type_index * (static_cast<std::size_t>(heard_bytes_.size()) + 1);
     if (bulk) {
-      if (pending_bulk_bytes_ + bytes >= kOneOverheard || pending_bulk_frames_ + 1 >= (std::uint64_t{1} << (64 - kHeardBytesBits)))
+      if (pending_bulk_bytes_ + bytes >= kOneOverheard ||
+          pending_bulk_frames_ + 1 >= (std::uint64_t{1} << (64 - kHeardBytesBits)))
         materialize();  // the packed sums would overflow
       ++pending_bulk_frames_;
       pending_bulk_bytes_ += bytes;
@@ -400,7 +424,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     };
     if (bulk && !is_broadcast) {
       // Unicasts, the bulk of the traffic: one job each (see OverhearingJob).
-      const OverhearingJob job{center.x(), center.y(), range, heard_booking, source_hot, destination_hot};
+      const OverhearingJob job{center.x(),    center.y(), range,
+                               heard_booking, source_hot, destination_hot};
       if (params_.overhearing_thread && static_count >= params_.overhearing_thread_min_nodes) {
         if (!overhearing_thread_.joinable()) start_overhearing_thread();
         jobs_filling_.push_back(job);
@@ -410,17 +435,21 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
       }
     } else if (bulk) {
       // A broadcast's bytes heard are its bytes received (folded into both by materialize).
-      line_index_.for_each_run_within(center, range, [&](std::uint32_t a, std::uint32_t c) {
-        hearers += c - a;
-        ++count_diff[a];
-        --count_diff[c];
-        bytes_diff[a] += bytes;
-        bytes_diff[c] -= bytes;
-        received += c - a;
-        if (collect)
-          for (std::uint32_t k = a; k < c; ++k)
-            if (k != source_hot && (everyone_wants || (interest[k] & type_bit))) receivers.push_back(slots[k]);
-      }, prefetch_both);
+      line_index_.for_each_run_within(
+          center, range,
+          [&](std::uint32_t a, std::uint32_t c) {
+            hearers += c - a;
+            ++count_diff[a];
+            --count_diff[c];
+            bytes_diff[a] += bytes;
+            bytes_diff[c] -= bytes;
+            received += c - a;
+            if (collect)
+              for (std::uint32_t k = a; k < c; ++k)
+                if (k != source_hot && (everyone_wants || (interest[k] & type_bit)))
+                  receivers.push_back(slots[k]);
+          },
+          prefetch_both);
     } else {
       line_index_.for_each_run_within(center, range, [&](std::uint32_t a, std::uint32_t c) {
         for (std::uint32_t k = a; k < c; ++k) {
@@ -457,13 +486,16 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     });
   }
   if (is_broadcast) {
-    for_each_mobile_within(center, range, [&](NodeId id) { receive(id, hot_[sim::index(id)]); }, source, sim::kNoNode);
+    for_each_mobile_within(
+        center, range, [&](NodeId id) { receive(id, hot_[sim::index(id)]); }, source, sim::kNoNode);
   } else {
-    for_each_mobile_within(center, range, [&](NodeId id) { overhear(id, hot_[sim::index(id)]); }, source, destination,
-                           destination_distance);
+    for_each_mobile_within(
+        center, range, [&](NodeId id) { overhear(id, hot_[sim::index(id)]); }, source, destination,
+        destination_distance);
     // The addressee is decided by its distance, not by the grid's rounding at the boundary.
     // The same arithmetic as unicast()'s distance, so the known value decides identically.
-    const double distance = destination_distance >= 0.0 ? destination_distance : (position(destination) - center).norm();
+    const double distance = destination_distance >= 0.0 ? destination_distance
+                                                        : (position(destination) - center).norm();
     if (distance <= range)
       receive(destination, destination_hot);
     else
@@ -483,7 +515,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   if (receivers.empty()) return true;
   // Delivery order is by node id, whatever the grid's layout.
   // (On a sensor grid the runs already come in id order: check before sorting.)
-  if (receivers.size() > 1 && !std::is_sorted(receivers.begin(), receivers.end())) std::sort(receivers.begin(), receivers.end());
+  if (receivers.size() > 1 && !std::is_sorted(receivers.begin(), receivers.end()))
+    std::sort(receivers.begin(), receivers.end());
 
   if (params_.jitter_s <= 0) {
     // One event delivers to every receiver in id order: the same order separate events with
@@ -491,9 +524,10 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     Batch& batch = batch_for(arrival);
     const bool one = receivers.size() == 1;
     const auto first = static_cast<std::uint32_t>(batch.receivers.size());
-    batch.deliveries.push_back(Delivery{Frame{source, destination, type, bytes, range, now, frame_number, std::move(payload)},
-                                        one ? receivers[0] : sim::kNoNode, first,
-                                        one ? 0u : static_cast<std::uint32_t>(receivers.size())});
+    batch.deliveries.push_back(Delivery{
+        Frame{source, destination, type, bytes, range, now, frame_number, std::move(payload)},
+        one ? receivers[0] : sim::kNoNode, first,
+        one ? 0u : static_cast<std::uint32_t>(receivers.size())});
     if (!one) batch.receivers.insert(batch.receivers.end(), receivers.begin(), receivers.end());
     return true;
   }
@@ -504,7 +538,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   for (NodeId id : receivers) {
     const double u = sim::keyed_uniform01(seed_, kJitterPurpose, nodes_[source_index].random_key,
                                           nodes_[sim::index(id)].random_key, frame_number);
-    simulator_.at(arrival + sim::seconds(u * params_.jitter_s), [this, index, id] { deliver_jittered(index, id); });
+    simulator_.at(arrival + sim::seconds(u * params_.jitter_s),
+                  [this, index, id] { deliver_jittered(index, id); });
   }
   return true;
 }
@@ -523,7 +558,8 @@ void Radio::hand_over(const Frame& frame, NodeId receiver) {
 }
 
 Radio::Batch& Radio::batch_for(sim::Time arrival) {
-  if (open_batch_ != 0xFFFFFFFFu && open_batch_time_ == arrival && simulator_.last_sequence() == open_batch_sequence_)
+  if (open_batch_ != 0xFFFFFFFFu && open_batch_time_ == arrival &&
+      simulator_.last_sequence() == open_batch_sequence_)
     return batches_[open_batch_];
   const std::uint32_t batch = sim::reuse_or_append(free_batches_, batches_);
   const sim::EventId event = simulator_.at(arrival, [this, batch] { run_batch(batch); });
@@ -553,7 +589,8 @@ void Radio::run_batch(std::uint32_t batch) {
     // networks (each sensor row is a jump): fetch a few receivers ahead.
     const NodeId* const ids = receivers + d.first;
     for (std::uint32_t k = 0; k < d.count; ++k) {
-      if (k % 16 == 0 && k + 32 < d.count) __builtin_prefetch(ids + k + 32);  // the ids, two lines ahead
+      if (k % 16 == 0 && k + 32 < d.count)
+        __builtin_prefetch(ids + k + 32);  // the ids, two lines ahead
       if (k + kDeliveryLookahead < d.count) {
         // What a receiver that answers reads first: its position, hot index and sender state.
         const std::size_t ahead = sim::index(ids[k + kDeliveryLookahead]);
@@ -568,14 +605,16 @@ void Radio::run_batch(std::uint32_t batch) {
   done.deliveries.clear();
   done.receivers.clear();
   // A burst of a whole network (initial reports) should not stay allocated.
-  if (done.deliveries.capacity() > kKeptBatchCapacity) std::vector<Delivery>().swap(done.deliveries);
+  if (done.deliveries.capacity() > kKeptBatchCapacity)
+    std::vector<Delivery>().swap(done.deliveries);
   if (done.receivers.capacity() > kKeptBatchCapacity) std::vector<NodeId>().swap(done.receivers);
   free_batches_.push_back(batch);
 }
 
 void Radio::prefetch_delivery(const Delivery& delivery) {
   const char* const record = reinterpret_cast<const char*>(&delivery);
-  for (std::size_t offset = 0; offset < sizeof(Delivery); offset += 64) __builtin_prefetch(record + offset);
+  for (std::size_t offset = 0; offset < sizeof(Delivery); offset += 64)
+    __builtin_prefetch(record + offset);
   __builtin_prefetch(record + sizeof(Delivery) - 1);
 }
 

@@ -1,7 +1,7 @@
 #pragma once
-// The simulated radio as a *medium* (like ARGoS's range-and-bearing medium and ns-3's YansWifiChannel):
-// unit-disk reception with a per-transmission range, delay = latency + airtime + jitter,
-// Bernoulli loss per reception, per-node counters by message type, and the energy ledger of
+// The simulated radio as a *medium* (like ARGoS's range-and-bearing medium and ns-3's
+// YansWifiChannel): unit-disk reception with a per-transmission range, delay = latency + airtime +
+// jitter, Bernoulli loss per reception, per-node counters by message type, and the energy ledger of
 // It knows message formats, never protocol logic. See docs/radio-and-energy.md.
 #include <array>
 #include <atomic>
@@ -36,10 +36,11 @@ struct RadioParams {
   double bitrate_bps = 1e6;        ///< airtime = bytes·8 / bitrate
   double jitter_s = 0.0;           ///< extra delay per reception, uniform in [0, jitter)
   RadioLevel level = RadioLevel::airtime;
-  double loss = 0.0;               ///< probability that a reception is lost
+  double loss = 0.0;  ///< probability that a reception is lost
   /// Book the overhearing of bulk unicasts (row runs into the difference words) on a
   /// second thread. Results are identical (integer sums, in any order, read only after it has
-  /// caught up); `masnet run` sets it when the process may run on two processors or more. Not a scenario key.
+  /// caught up); `masnet run` sets it when the process may run on two processors or more. Not a
+  /// scenario key.
   bool overhearing_thread = false;
   /// ... from this many static nodes on: below, the bookkeeping is light and stays inline (the
   /// acoustic scenario's 1 600 sensors ran 3 % slower with the thread).
@@ -141,7 +142,9 @@ class Radio {
   /// Frames of one type sent and received (as addressee) by `node`.
   TypeCounters counters(NodeId node, MessageType type) const;
   /// Frames by type over all nodes (tx: transmissions; rx: receptions by addressees).
-  const TypeCounters& totals(MessageType type) const { return totals_[static_cast<std::size_t>(type)]; }
+  const TypeCounters& totals(MessageType type) const {
+    return totals_[static_cast<std::size_t>(type)];
+  }
   /// Radio energy booked so far over all nodes (idle drain excluded), joules.
   double total_tx_energy_j() const { return total_tx_j_; }
   double total_rx_energy_j() const {
@@ -199,7 +202,8 @@ class Radio {
   struct Delivery {
     Frame frame;
     NodeId only = sim::kNoNode;  // the receiver, when there is one (unicasts): no indirection
-    std::uint32_t first = 0, count = 0;  // otherwise its receivers in the batch's `receivers`, id order
+    std::uint32_t first = 0,
+                  count = 0;  // otherwise its receivers in the batch's `receivers`, id order
   };
   // Frames are built in place at the end of their batch: value-initialising an element and then
   // assigning it would zero the line (a string store) and read it straight back (the payload's
@@ -222,7 +226,8 @@ class Radio {
   void add_node(NodeId id, Node node, bool mobile, const Vec2& position);
   /// A unicast passes its addressee's distance (the range before the max_range cap), so the
   /// reach test need not look the addressee up again.
-  bool transmit(NodeId source, NodeId destination, double range, Payload&& payload, double destination_distance = -1.0);
+  bool transmit(NodeId source, NodeId destination, double range, Payload&& payload,
+                double destination_distance = -1.0);
   void prepare_index();
   /// Folds the bulk (run-length) bookings into the per-node counters.
   void materialize() const;
@@ -233,8 +238,8 @@ class Radio {
   /// `skip_b_distance` >= 0: skip_b is a unicast's addressee at that distance from `center`;
   /// the query then scans the mobile nodes near the addressee (see near_addressee).
   template <class Visit>
-  void for_each_mobile_within(const Vec2& center, double range, Visit&& visit, NodeId skip_a, NodeId skip_b,
-                              double skip_b_distance = -1.0);
+  void for_each_mobile_within(const Vec2& center, double range, Visit&& visit, NodeId skip_a,
+                              NodeId skip_b, double skip_b_distance = -1.0);
   // The mobile index's points (positions as indexed) within `reach` of a unicast addressee, at
   // one instant. A burst of replies to one robot asks the same neighbourhood a hundred times:
   // each reply then scans these few points instead of walking the grid. Any point within r of
@@ -278,9 +283,9 @@ class Radio {
   const MobilePositions* mobile_ = nullptr;
 
   std::vector<Node> nodes_;
-  std::vector<Sender> senders_;        // [node]
-  std::vector<std::uint32_t> hot_;     // [node]: the hot index, kNoHotIndex until indexed
-  std::vector<Vec2> positions_;        // [node]: static nodes' positions; NaN for mobile ones
+  std::vector<Sender> senders_;     // [node]
+  std::vector<std::uint32_t> hot_;  // [node]: the hot index, kNoHotIndex until indexed
+  std::vector<Vec2> positions_;     // [node]: static nodes' positions; NaN for mobile ones
   struct TxCounter {
     std::uint64_t count = 0, bytes = 0;  // side by side: a transmission touches one cache line
   };
@@ -340,7 +345,8 @@ class Radio {
   /// Pauses either side spins before it sleeps (with two processors or more).
   static constexpr std::uint32_t kSpinLimit = 2000;
   mutable std::vector<OverhearingJob> jobs_filling_;
-  mutable std::array<std::vector<OverhearingJob>, kHandOverSlots> jobs_handed_;  // [hand-over % slots]
+  mutable std::array<std::vector<OverhearingJob>, kHandOverSlots>
+      jobs_handed_;  // [hand-over % slots]
   // Hand-overs published by this thread and booked by the other (counts that wrap): slots
   // [booked, published) are the other thread's. Each side sleeps on the other's counter.
   alignas(64) mutable std::atomic<std::uint32_t> jobs_published_{0};
@@ -356,13 +362,13 @@ class Radio {
   bool use_lines_ = false;
   std::uint32_t static_interest_ = 0;         // union of the static nodes' interest masks
   std::uint32_t static_interest_common_ = 0;  // their intersection: types every static node wants
-  std::vector<std::uint32_t> interest_;  // [hot]: read for every receiver of a broadcast
+  std::vector<std::uint32_t> interest_;       // [hot]: read for every receiver of a broadcast
   bool index_dirty_ = true;
   sim::Time mobile_index_time_{};
   bool mobile_index_valid_ = false;
   std::uint64_t mobile_index_generation_ = 0;  // counts rebuilds
   NearAddressee near_;
-  double margin_speed_ = 0.0;  // speed bound since the mobile index was built
+  double margin_speed_ = 0.0;       // speed bound since the mobile index was built
   std::vector<Vec2> mobile_cache_;  // by mobile index, at mobile_cache_time_
   sim::Time mobile_cache_time_{};
   bool mobile_cache_valid_ = false;
@@ -384,8 +390,8 @@ class Radio {
 };
 
 template <class Visit>
-void Radio::for_each_mobile_within(const Vec2& center, double range, Visit&& visit, NodeId skip_a, NodeId skip_b,
-                                   double skip_b_distance) {
+void Radio::for_each_mobile_within(const Vec2& center, double range, Visit&& visit, NodeId skip_a,
+                                   NodeId skip_b, double skip_b_distance) {
   if (mobile_ids_.empty()) return;
   const double r2 = range * range;
   if (mobile_ids_.size() <= kMobileScanLimit) {
@@ -401,7 +407,8 @@ void Radio::for_each_mobile_within(const Vec2& center, double range, Visit&& vis
     // Two robots per step, the same arithmetic per robot as the scalar loop below.
     const __m128d vcx = _mm_set1_pd(cx), vcy = _mm_set1_pd(cy), vr2 = _mm_set1_pd(r2);
     for (; m + 2 <= count; m += 2) {
-      const __m128d first = _mm_loadu_pd(positions[m].data()), second = _mm_loadu_pd(positions[m + 1].data());
+      const __m128d first = _mm_loadu_pd(positions[m].data()),
+                    second = _mm_loadu_pd(positions[m + 1].data());
       const __m128d dx = _mm_sub_pd(_mm_unpacklo_pd(first, second), vcx);
       const __m128d dy = _mm_sub_pd(_mm_unpackhi_pd(first, second), vcy);
       const __m128d d2 = _mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy));
@@ -423,7 +430,8 @@ void Radio::for_each_mobile_within(const Vec2& center, double range, Visit&& vis
   prepare_mobile_index();
   const double margin = margin_speed_ * sim::to_seconds(simulator_.now() - mobile_index_time_);
   auto consider = [&](NodeId id) {
-    if (id != skip_a && id != skip_b && (mobile_->position(id) - center).squaredNorm() <= r2) visit(id);
+    if (id != skip_a && id != skip_b && (mobile_->position(id) - center).squaredNorm() <= r2)
+      visit(id);
   };
   const double radius = range + margin;
   if (skip_b_distance >= 0.0) {
@@ -439,7 +447,8 @@ void Radio::for_each_mobile_within(const Vec2& center, double range, Visit&& vis
       return;
     }
   }
-  mobile_grid_.for_each_within(center, radius, [&](NodeId id, const Vec2&, double) { consider(id); });
+  mobile_grid_.for_each_within(center, radius,
+                               [&](NodeId id, const Vec2&, double) { consider(id); });
 }
 
 }  // namespace masnet::net

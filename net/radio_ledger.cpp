@@ -10,7 +10,8 @@ void Radio::prepare_index() {
   // Keep what each node has heard across a rebuild (nodes added after the first frame).
   materialize();
   const std::size_t n_nodes = nodes_.size(), types = kMessageTypeCount;
-  std::vector<std::uint64_t> heard(n_nodes, 0), overheard(n_nodes, 0), count(n_nodes * types, 0), bytes(n_nodes * types, 0);
+  std::vector<std::uint64_t> heard(n_nodes, 0), overheard(n_nodes, 0), count(n_nodes * types, 0),
+      bytes(n_nodes * types, 0);
   const std::size_t old_stride = heard_bytes_.size();
   for (std::size_t n = 0; n < n_nodes; ++n) {
     const std::uint32_t hot = hot_[n];
@@ -26,12 +27,14 @@ void Radio::prepare_index() {
   std::vector<TxCounter> tx(n_nodes * types);
   const std::size_t old_nodes = tx_.size() / types;
   for (std::size_t t = 0; t < types; ++t)
-    for (std::size_t n = 0; n < old_nodes; ++n) tx[t * n_nodes + n] = tx_[t * old_nodes + n];
+    for (std::size_t n = 0; n < old_nodes; ++n)
+      tx[t * n_nodes + n] = tx_[t * old_nodes + n];
   tx_ = std::move(tx);
   // Sensor grids lie on rows: index them as lines, so frames can be booked run by run.
   std::vector<Vec2> static_positions;
   static_positions.reserve(static_ids_.size());
-  for (const NodeId id : static_ids_) static_positions.push_back(positions_[sim::index(id)]);
+  for (const NodeId id : static_ids_)
+    static_positions.push_back(positions_[sim::index(id)]);
   use_lines_ = line_index_.build(static_positions, static_ids_);
   if (!use_lines_) static_grid_.build(static_positions, static_ids_);
   const std::vector<NodeId>& slots = use_lines_ ? line_index_.ids() : static_grid_.ids();
@@ -45,7 +48,8 @@ void Radio::prepare_index() {
   for (std::size_t m = 0; m < mobile_ids_.size(); ++m)
     hot_[sim::index(mobile_ids_[m])] = static_cast<std::uint32_t>(slots.size() + m);
   interest_.assign(n_nodes, 0);
-  for (std::size_t n = 0; n < n_nodes; ++n) interest_[hot_[n]] = nodes_[n].interest;
+  for (std::size_t n = 0; n < n_nodes; ++n)
+    interest_[hot_[n]] = nodes_[n].interest;
   heard_bytes_.assign(n_nodes, 0);
   overheard_count_.assign(n_nodes, 0);
   rx_count_.assign(n_nodes * types, 0);
@@ -149,8 +153,10 @@ sim::Fingerprint Radio::traffic_fingerprint() {
     fp.mix(static_cast<std::uint64_t>(sim::to_ns(node.died_at)) ^ std::uint64_t{node.alive});
     for (std::size_t t = 0; t < kMessageTypeCount; ++t) {
       const TxCounter sent = n < tx_stride ? tx_[t * tx_stride + n] : TxCounter{};
-      const std::uint64_t rx_count = rx_count_[t * rx_stride + hot], rx_bytes = rx_bytes_[t * rx_stride + hot];
-      if ((sent.count | sent.bytes | rx_count | rx_bytes) == 0) continue;  // most nodes use few types
+      const std::uint64_t rx_count = rx_count_[t * rx_stride + hot],
+                          rx_bytes = rx_bytes_[t * rx_stride + hot];
+      if ((sent.count | sent.bytes | rx_count | rx_bytes) == 0)
+        continue;  // most nodes use few types
       fp.mix(std::uint64_t{t} << 56 ^ n);
       fp.mix(sent.count);
       fp.mix(sent.bytes);

@@ -32,15 +32,20 @@ void SpatialGrid::build(std::span<const Vec2> positions, std::span<const sim::No
   cell_ = std::max(cell_, 1e-9);
   // Cap the number of cells so that a degenerate layout cannot allocate a huge table.
   const double max_cells = 4.0 * static_cast<double>(n) + 16.0;
-  while ((width / cell_ + 1.0) * (height / cell_ + 1.0) > max_cells) cell_ *= 1.5;
+  while ((width / cell_ + 1.0) * (height / cell_ + 1.0) > max_cells)
+    cell_ *= 1.5;
   inv_cell_ = 1.0 / cell_;
   nx_ = static_cast<int>(width / cell_) + 1;
   ny_ = static_cast<int>(height / cell_) + 1;
 
-  auto cell_of = [&](const Vec2& p) { return static_cast<std::size_t>(row_of(p.y()) * nx_ + col_of(p.x())); };
+  auto cell_of = [&](const Vec2& p) {
+    return static_cast<std::size_t>(row_of(p.y()) * nx_ + col_of(p.x()));
+  };
   cell_start_.assign(static_cast<std::size_t>(nx_) * ny_ + 1, 0);
-  for (const Vec2& p : positions) ++cell_start_[cell_of(p) + 1];
-  for (std::size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
+  for (const Vec2& p : positions)
+    ++cell_start_[cell_of(p) + 1];
+  for (std::size_t c = 1; c < cell_start_.size(); ++c)
+    cell_start_[c] += cell_start_[c - 1];
   std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
   for (std::size_t i = 0; i < n; ++i) {  // stable: ids keep their input order inside a cell
     const std::uint32_t k = fill[cell_of(positions[i])]++;

@@ -1,5 +1,6 @@
 #pragma once
-// SK(ρ): the class-K scaling applied to readings before centroids (paper §IV; docs/field-models.md).
+// SK(ρ): the class-K scaling applied to readings before centroids (paper §IV;
+// docs/field-models.md).
 #include <cmath>
 
 namespace masnet::protocols {
@@ -15,10 +16,14 @@ struct DensityScaling {
   double operator()(double rho) const {
     if (!(rho > 0.0)) return 0.0;
     switch (kind) {
-      case ScalingKind::identity: return rho;
-      case ScalingKind::power: return std::pow(rho, gamma);
-      case ScalingKind::log1p: return std::log1p(rho);
-      case ScalingKind::saturate: return rho / (rho + saturation);
+      case ScalingKind::identity:
+        return rho;
+      case ScalingKind::power:
+        return std::pow(rho, gamma);
+      case ScalingKind::log1p:
+        return std::log1p(rho);
+      case ScalingKind::saturate:
+        return rho / (rho + saturation);
     }
     return rho;
   }

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <tuple>
 #include <numbers>
+#include <tuple>
 
 #include "sim/assert.hpp"
 
@@ -592,7 +592,9 @@ bool contains(std::span<const Vec2> v, const Vec2& point) {
   return true;
 }
 
-bool contains(const ConvexPolygon& polygon, const Vec2& point) { return contains(std::span<const Vec2>(polygon.vertices), point); }
+bool contains(const ConvexPolygon& polygon, const Vec2& point) {
+  return contains(std::span<const Vec2>(polygon.vertices), point);
+}
 
 void RowSlicer::reset(std::span<const Vec2> v) {
   const std::size_t n = v.size();
@@ -616,19 +618,24 @@ void RowSlicer::reset(std::span<const Vec2> v) {
   // the right chain climbs from the last bottom vertex to the first top vertex, the left chain
   // from the first bottom vertex (walking backwards) to the last top vertex.
   std::size_t right_start = low, left_start = low;
-  for (std::size_t k = 0; k < n && v[next(right_start)].y() == y_min_; ++k) right_start = next(right_start);
-  for (std::size_t k = 0; k < n && v[prev(left_start)].y() == y_min_; ++k) left_start = prev(left_start);
+  for (std::size_t k = 0; k < n && v[next(right_start)].y() == y_min_; ++k)
+    right_start = next(right_start);
+  for (std::size_t k = 0; k < n && v[prev(left_start)].y() == y_min_; ++k)
+    left_start = prev(left_start);
   // The slope form x0 + (y − y0)·slope has (y − y0)·slope within a few ulps of the edge's Δx
   // (0 <= y − y0 <= Δy), so every end is within a few ulps of max |x|; 64 ulps is ample.
-  margin_ = 64.0 * std::numeric_limits<double>::epsilon() * largest_x + std::numeric_limits<double>::denorm_min();
+  margin_ = 64.0 * std::numeric_limits<double>::epsilon() * largest_x +
+            std::numeric_limits<double>::denorm_min();
   max_abs_x_ = largest_x;
   auto add = [this](Chain& chain, const Vec2& a, const Vec2& b) {
     const double slope = (b.x() - a.x()) / (b.y() - a.y());
     if (!std::isfinite(slope)) margin_ = std::numeric_limits<double>::infinity();
     chain.edges.push_back(Edge{b.y(), a.x(), a.y(), std::isfinite(slope) ? slope : 0.0});
   };
-  for (std::size_t i = right_start, k = 0; k < n && v[i].y() < y_max_; i = next(i), ++k) add(right_, v[i], v[next(i)]);
-  for (std::size_t i = left_start, k = 0; k < n && v[i].y() < y_max_; i = prev(i), ++k) add(left_, v[i], v[prev(i)]);
+  for (std::size_t i = right_start, k = 0; k < n && v[i].y() < y_max_; i = next(i), ++k)
+    add(right_, v[i], v[next(i)]);
+  for (std::size_t i = left_start, k = 0; k < n && v[i].y() < y_max_; i = prev(i), ++k)
+    add(left_, v[i], v[prev(i)]);
   // Zero height breaks ConvexPolygon's promise; the caller falls back to contains().
   if (right_.edges.empty() || left_.edges.empty()) valid_ = false;
 }

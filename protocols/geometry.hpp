@@ -155,7 +155,8 @@ class RowSlicer {
   std::pair<double, double> extent(double y) { return {left_.x(y), right_.x(y)}; }
   /// contains(vertices, point) for a point on the row whose extent() is [left, right]: decided
   /// by the ends where the point is farther than margin() from both, exactly otherwise.
-  bool contains_on_row(std::span<const Vec2> vertices, const Vec2& point, double left, double right) const {
+  bool contains_on_row(std::span<const Vec2> vertices, const Vec2& point, double left,
+                       double right) const {
     const double x = point.x();
     if (x >= left + margin_ && x <= right - margin_) return true;
     if (x < left - margin_ || x > right + margin_) return false;
@@ -170,7 +171,8 @@ class RowSlicer {
     std::vector<Edge> edges;
     std::size_t at = 0;
     double x(double y) {
-      while (at + 1 < edges.size() && y > edges[at].y_top) ++at;
+      while (at + 1 < edges.size() && y > edges[at].y_top)
+        ++at;
       const Edge& e = edges[at];
       return e.x0 + (y - e.y0) * e.slope;
     }

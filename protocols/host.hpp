@@ -34,18 +34,18 @@ struct HeardRobot {
 /// What one Voronoi update did (docs/protocols.md): the part recorders keep.
 struct UpdateSummary {
   NodeId robot = sim::kNoNode;
-  std::uint32_t update = 0;   ///< the robot's update counter, from 1
+  std::uint32_t update = 0;  ///< the robot's update counter, from 1
   sim::Time started{}, finished{};
-  std::uint32_t rounds = 0;   ///< DISCOVER rounds (0 for the oracle)
-  double radius = 0.0;        ///< R at the end of the update (before range decay)
-  bool truncated = false;     ///< R was capped at max_range before the stop rule held
-  bool delayed = false;       ///< started late because the previous update was still running
-  bool no_mass = false;       ///< no positive reading in the cell: target kept
-  Vec2 position{0, 0};        ///< the robot's position the cell was computed for
-  ConvexPolygon cell;         ///< the cell the robot computed
+  std::uint32_t rounds = 0;        ///< DISCOVER rounds (0 for the oracle)
+  double radius = 0.0;             ///< R at the end of the update (before range decay)
+  bool truncated = false;          ///< R was capped at max_range before the stop rule held
+  bool delayed = false;            ///< started late because the previous update was still running
+  bool no_mass = false;            ///< no positive reading in the cell: target kept
+  Vec2 position{0, 0};             ///< the robot's position the cell was computed for
+  ConvexPolygon cell;              ///< the cell the robot computed
   std::vector<NodeId> neighbours;  ///< robots whose bisectors bound the cell, ascending
-  Vec2 centroid{0, 0};        ///< the new target (or the kept one)
-  std::uint32_t readings = 0; ///< readings inside the cell used for the centroid
+  Vec2 centroid{0, 0};             ///< the new target (or the kept one)
+  std::uint32_t readings = 0;      ///< readings inside the cell used for the centroid
   std::array<MessageTally, net::kMessageTypeCount> messages{};
 };
 
@@ -87,7 +87,8 @@ class RobotHost {
   /// The exact Voronoi cell of this robot among the true robot positions now.
   virtual RobotCell true_cell() = 0;
   /// Adds every sensor inside `cell` with its reading now to `accumulator`; returns how many.
-  virtual std::uint32_t read_sensors_in(const ConvexPolygon& cell, CentroidAccumulator& accumulator) = 0;
+  virtual std::uint32_t read_sensors_in(const ConvexPolygon& cell,
+                                        CentroidAccumulator& accumulator) = 0;
 };
 
 /// The world as a sensor's protocol sees it.

@@ -2,7 +2,8 @@
 
 namespace masnet::protocols {
 
-Vec2 lloyd_force(double k, double k_v, const Vec2& position, const Vec2& velocity, const Vec2& centroid) {
+Vec2 lloyd_force(double k, double k_v, const Vec2& position, const Vec2& velocity,
+                 const Vec2& centroid) {
   return -k * (position - centroid) - k_v * velocity;
 }
 

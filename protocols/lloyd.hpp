@@ -61,7 +61,8 @@ class CentroidAccumulator {
 
  private:
   template <class Scale>
-  void add_row_scaled(double y, const double* xs, const double* rhos, std::size_t n, double area, Scale scale) {
+  void add_row_scaled(double y, const double* xs, const double* rhos, std::size_t n, double area,
+                      Scale scale) {
     double mass = mass_, mx = moment_x_, my = moment_y_;
     std::uint32_t weighted = weighted_;
     for (std::size_t k = 0; k < n; ++k) {
@@ -84,6 +85,7 @@ class CentroidAccumulator {
 };
 
 /// The control force of paper eq. (2): f = −k (p − c) − k_v ṗ (world units / s²).
-Vec2 lloyd_force(double k, double k_v, const Vec2& position, const Vec2& velocity, const Vec2& centroid);
+Vec2 lloyd_force(double k, double k_v, const Vec2& position, const Vec2& velocity,
+                 const Vec2& centroid);
 
 }  // namespace masnet::protocols

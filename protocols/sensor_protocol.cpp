@@ -13,7 +13,8 @@ void SensorProtocol::on_frame(SensorHost& host, SensorState& state, const net::F
     // Not logged: this runs for every sensor that hears a SENSE, where even a level test
     // costs a measurable share of a run (docs/logging.md).
     if (sense_cell_.contains(host.position()))
-      host.unicast(sense->robot, net::Reading{host.id(), sense->update, host.position(), host.reading()});
+      host.unicast(sense->robot,
+                   net::Reading{host.id(), sense->update, host.position(), host.reading()});
   } else if (const auto* position = std::get_if<net::Position>(&frame.payload)) {
     // 2: each sensor finds its closest robot (ties: the lower id).
     const double d2 = (position->position - host.position()).squaredNorm();
@@ -33,8 +34,8 @@ void SensorProtocol::on_timer(SensorHost& host, SensorState& state, std::uint32_
   // 3: each sensor sends its position and measurement to its closest robot.
   if (kind == kReport && state.closest_robot != sim::kNoNode) {
     const double reading = host.reading();
-    MASNET_LOG(log_, trace, "sensor {}: reports {} to its closest robot {}", sim::index(host.id()), reading,
-               sim::index(state.closest_robot));
+    MASNET_LOG(log_, trace, "sensor {}: reports {} to its closest robot {}", sim::index(host.id()),
+               reading, sim::index(state.closest_robot));
     host.unicast(state.closest_robot, net::Report{host.id(), host.position(), reading});
   }
 }

@@ -7,21 +7,31 @@
 
 namespace masnet::protocols {
 namespace {
-std::uint32_t number(NodeId node) { return sim::index(node); }
+std::uint32_t number(NodeId node) {
+  return sim::index(node);
+}
 std::string node_list(const std::vector<NodeId>& nodes) {
   std::vector<std::uint32_t> numbers;
-  for (NodeId node : nodes) numbers.push_back(number(node));
+  for (NodeId node : nodes)
+    numbers.push_back(number(node));
   return fmt::format("[{}]", fmt::join(numbers, ", "));
 }
 }  // namespace
 
 VoronoiProtocol::VoronoiProtocol(RobotHost& host, const ProtocolParams& params,
-                                 const ProtocolContext& context, double phase_s, const sim::Log* log)
+                                 const ProtocolContext& context, double phase_s,
+                                 const sim::Log* log)
     : host_(host), params_(params), context_(context), phase_s_(phase_s), log_(log) {
   switch (params_.kind) {
-    case ProtocolKind::fixed_radius: radius_m_ = std::min(params_.fixed_radius, context_.max_range); break;
-    case ProtocolKind::gabriel: radius_m_ = context_.max_range; break;
-    default: radius_m_ = params_.decay.min; break;
+    case ProtocolKind::fixed_radius:
+      radius_m_ = std::min(params_.fixed_radius, context_.max_range);
+      break;
+    case ProtocolKind::gabriel:
+      radius_m_ = context_.max_range;
+      break;
+    default:
+      radius_m_ = params_.decay.min;
+      break;
   }
 }
 
@@ -46,19 +56,22 @@ void VoronoiProtocol::announce_position() {  // 1: each robot broadcasts its pos
 
 void VoronoiProtocol::on_report(const net::Report& report, std::uint32_t) {
   // 4-5: robot i knows which sensors are in its cell and finds the farthest one.
-  farthest_reporter_m_ = std::max(farthest_reporter_m_, (report.position - host_.position()).norm());
+  farthest_reporter_m_ =
+      std::max(farthest_reporter_m_, (report.position - host_.position()).norm());
 }
 
 void VoronoiProtocol::finish_initialisation() {
   // 6: R_i = ‖p_i − s_j‖ for the farthest reporter j (R_min if nobody reported).
   radius_m_ = std::max(farthest_reporter_m_, params_.decay.min);
-  MASNET_LOG(log_, debug, "robot {} initialised: R {} (farthest reporting sensor {})", number(host_.id()),
-             radius_m_, farthest_reporter_m_);
+  MASNET_LOG(log_, debug, "robot {} initialised: R {} (farthest reporting sensor {})",
+             number(host_.id()), radius_m_, farthest_reporter_m_);
   phase_ = Phase::idle;
   schedule_ticks();
 }
 
-void VoronoiProtocol::schedule_ticks() { host_.set_timer(sim::seconds(phase_s_), kTick); }
+void VoronoiProtocol::schedule_ticks() {
+  host_.set_timer(sim::seconds(phase_s_), kTick);
+}
 
 // ---- The update: steps 1-4 of paper §III-B --------------------------------------------------
 
@@ -67,7 +80,8 @@ void VoronoiProtocol::on_tick() {
   if (phase_ != Phase::idle) {  // still busy with the previous update: this one waits
     tick_pending_ = true;
     ++delayed_updates_;
-    MASNET_LOG(log_, debug, "robot {} update {}: still running at the next tick, the next update waits",
+    MASNET_LOG(log_, debug,
+               "robot {} update {}: still running at the next tick, the next update waits",
                number(host_.id()), update_);
     return;
   }
@@ -83,8 +97,8 @@ void VoronoiProtocol::begin_update() {
   tick_pending_ = false;
   position_ = host_.position();
   record_.position = position_;
-  MASNET_LOG(log_, debug, "robot {} update {}: start at ({}, {}), R {}{}", number(host_.id()), update_,
-             position_.x(), position_.y(), radius_m_, record_.delayed ? " (delayed)" : "");
+  MASNET_LOG(log_, debug, "robot {} update {}: start at ({}, {}), R {}{}", number(host_.id()),
+             update_, position_.x(), position_.y(), radius_m_, record_.delayed ? " (delayed)" : "");
   neighbours_.clear();
   readings_.clear();
   sensed_cell_.clear();
@@ -110,8 +124,9 @@ void VoronoiProtocol::end_round() {
   //    through the sensing range and the distance rule of decide()).
   cell_ = compute_cell();
   cell_sites_ = neighbours_.size();
-  MASNET_LOG(log_, debug, "robot {} update {}: round {} timed out after {} s with {} neighbours heard",
-             number(host_.id()), update_, record_.rounds, params_.reply_timeout_s, neighbours_.size());
+  MASNET_LOG(
+      log_, debug, "robot {} update {}: round {} timed out after {} s with {} neighbours heard",
+      number(host_.id()), update_, record_.rounds, params_.reply_timeout_s, neighbours_.size());
   if (record_.rounds > 1) {
     decide();
     return;
@@ -141,20 +156,22 @@ void VoronoiProtocol::decide() {
   }
   // 3) d_i: the farthest sensor in V_i (the seed) or the farthest point of V_i = Ω ∩ B(p_i, R_i)
   //    ∩ bisectors (Cortés), which is min(R_i, farthest vertex of the unbounded-by-disk cell).
-  const double farthest_m = params_.criterion == StopCriterion::sensors
-                                ? farthest_reading_in_cell()
-                                : std::min(radius_m_, max_vertex_distance(cell_.polygon, position_));
+  const double farthest_m =
+      params_.criterion == StopCriterion::sensors
+          ? farthest_reading_in_cell()
+          : std::min(radius_m_, max_vertex_distance(cell_.polygon, position_));
   // 4) If R_i >= 2 d_i, stop (the paper's strict '>' never stops after R_i = 2 d_i; see
   //    docs/decisions/0001-stop-rule.md). Otherwise grow R_i and go to step 1.
   if (radius_m_ >= 2.0 * farthest_m) {
-    MASNET_LOG(log_, debug, "robot {} update {}: R {} >= 2 x {}: stop", number(host_.id()), update_, radius_m_,
-               farthest_m);
+    MASNET_LOG(log_, debug, "robot {} update {}: R {} >= 2 x {}: stop", number(host_.id()), update_,
+               radius_m_, farthest_m);
     if (params_.shrink_on_stop) radius_m_ = std::max(2.0 * farthest_m, params_.decay.min);
     finish_update(false);
     return;
   }
   if (radius_m_ >= context_.max_range) {  // cannot grow any more: the cell is truncated
-    MASNET_LOG(log_, debug, "robot {} update {}: R {} is the max range and {} < 2 x {}: cell truncated",
+    MASNET_LOG(log_, debug,
+               "robot {} update {}: R {} is the max range and {} < 2 x {}: cell truncated",
                number(host_.id()), update_, radius_m_, radius_m_, farthest_m);
     finish_update(true);
     return;
@@ -162,8 +179,9 @@ void VoronoiProtocol::decide() {
   const double grown_from = radius_m_;
   radius_m_ = params_.growth == Growth::to_2d ? 2.0 * farthest_m : 2.0 * radius_m_;
   radius_m_ = std::min(radius_m_, context_.max_range);
-  MASNET_LOG(log_, debug, "robot {} update {}: R {} -> {} (farthest {} {})", number(host_.id()), update_,
-             grown_from, radius_m_, params_.criterion == StopCriterion::sensors ? "sensor" : "vertex", farthest_m);
+  MASNET_LOG(log_, debug, "robot {} update {}: R {} -> {} (farthest {} {})", number(host_.id()),
+             update_, grown_from, radius_m_,
+             params_.criterion == StopCriterion::sensors ? "sensor" : "vertex", farthest_m);
   discover_round();
 }
 
@@ -180,10 +198,14 @@ void VoronoiProtocol::finish_update(bool truncated) {
     }
   record_.radius = radius_m_;
   record_.truncated = truncated;
-  record_.cell = truncated ? voronoi_cell(0, std::vector<Vec2>{position_}, {}, cell_.polygon, radius_m_).polygon
-                           : cell_.polygon;
-  for (std::uint32_t index : cell_.neighbours) record_.neighbours.push_back(neighbours_[index - 1].robot);
-  for (const HeardNeighbour& n : neighbours_) record_.heard.push_back({n.robot, n.position});
+  record_.cell =
+      truncated
+          ? voronoi_cell(0, std::vector<Vec2>{position_}, {}, cell_.polygon, radius_m_).polygon
+          : cell_.polygon;
+  for (std::uint32_t index : cell_.neighbours)
+    record_.neighbours.push_back(neighbours_[index - 1].robot);
+  for (const HeardNeighbour& n : neighbours_)
+    record_.heard.push_back({n.robot, n.position});
   std::sort(record_.neighbours.begin(), record_.neighbours.end());
   if (accumulator.has_mass()) {
     last_target_ = accumulator.centroid();
@@ -209,8 +231,8 @@ void VoronoiProtocol::decay_range() {
   if (unchanged_streak_ >= params_.decay.patience) {
     const double before = radius_m_;
     radius_m_ = std::max(radius_m_ - params_.decay.step, params_.decay.min);
-    MASNET_LOG(log_, debug, "robot {} update {}: R unchanged for {} updates, decays {} -> {}", number(host_.id()),
-               update_, params_.decay.patience, before, radius_m_);
+    MASNET_LOG(log_, debug, "robot {} update {}: R unchanged for {} updates, decays {} -> {}",
+               number(host_.id()), update_, params_.decay.patience, before, radius_m_);
     unchanged_streak_ = 0;
   }
 }
@@ -237,11 +259,12 @@ void VoronoiProtocol::run_oracle_update() {
 
 void VoronoiProtocol::log_update_end() const {
   MASNET_LOG(log_, debug,
-             "robot {} update {}: end after {} rounds, R {}{}, {} neighbours {}, {} readings, centroid ({}, {}){}",
+             "robot {} update {}: end after {} rounds, R {}{}, {} neighbours {}, {} readings, "
+             "centroid ({}, {}){}",
              number(record_.robot), record_.update, record_.rounds, record_.radius,
              record_.truncated ? " (truncated)" : "", record_.neighbours.size(),
-             node_list(record_.neighbours), record_.readings,
-             record_.centroid.x(), record_.centroid.y(), record_.no_mass ? " (no mass: target kept)" : "");
+             node_list(record_.neighbours), record_.readings, record_.centroid.x(),
+             record_.centroid.y(), record_.no_mass ? " (no mass: target kept)" : "");
 }
 
 // ---- Messages and timers --------------------------------------------------------------------
@@ -259,12 +282,14 @@ void VoronoiProtocol::on_frame(const net::Frame& frame) {
     // A neighbour is taken at the position of its first reply in this update: later replies
     // (from later rounds) would move the bisectors under the stop rule, and with R ← 2d — no
     // margin — drifting neighbours could keep an update growing round after round.
-    const bool known = std::any_of(neighbours_.begin(), neighbours_.end(),
-                                   [&](const HeardNeighbour& n) { return n.robot == neighbour->robot; });
+    const bool known =
+        std::any_of(neighbours_.begin(), neighbours_.end(),
+                    [&](const HeardNeighbour& n) { return n.robot == neighbour->robot; });
     if (!known) neighbours_.push_back({neighbour->robot, neighbour->position});
   } else if (const auto* reading = std::get_if<net::Reading>(&frame.payload)) {
     if (phase_ == Phase::idle || phase_ == Phase::initialising || reading->update != update_) {
-      MASNET_LOG(log_, debug, "robot {} update {}: ignored a stale READING from sensor {} (for update {})",
+      MASNET_LOG(log_, debug,
+                 "robot {} update {}: ignored a stale READING from sensor {} (for update {})",
                  number(host_.id()), update_, number(reading->sensor), reading->update);
       return;
     }
@@ -282,15 +307,22 @@ void VoronoiProtocol::answer_discover(const net::Discover& discover) {
 
 void VoronoiProtocol::on_timer(std::uint32_t kind) {
   switch (kind) {
-    case kInitEnd: finish_initialisation(); break;
-    case kTick: on_tick(); break;
-    case kRoundEnd: end_round(); break;
+    case kInitEnd:
+      finish_initialisation();
+      break;
+    case kTick:
+      on_tick();
+      break;
+    case kRoundEnd:
+      end_round();
+      break;
     case kSenseEnd:
       MASNET_LOG(log_, debug, "robot {} update {}: SENSE timed out after {} s with {} readings",
                  number(host_.id()), update_, params_.reply_timeout_s, readings_.size());
       decide();
       break;
-    default: break;
+    default:
+      break;
   }
 }
 
@@ -318,12 +350,14 @@ double VoronoiProtocol::farthest_reading_in_cell() const {
 
 Cell VoronoiProtocol::compute_cell() const {
   std::vector<Vec2> sites{position_};
-  for (const HeardNeighbour& n : neighbours_) sites.push_back(n.position);
+  for (const HeardNeighbour& n : neighbours_)
+    sites.push_back(n.position);
   std::vector<std::uint32_t> candidates;
   if (params_.kind == ProtocolKind::gabriel) {
     candidates = gabriel_neighbours(0, sites);  // the paper's approximation for sparse robots
   } else {
-    for (std::uint32_t i = 1; i < sites.size(); ++i) candidates.push_back(i);
+    for (std::uint32_t i = 1; i < sites.size(); ++i)
+      candidates.push_back(i);
   }
   return voronoi_cell(0, sites, candidates, context_.domain);
 }

@@ -1,6 +1,6 @@
 #pragma once
-// The robots' Voronoi protocols as one state machine (docs/protocols.md). The variants differ in a rule,
-// not in a file: how many DISCOVER rounds, how R grows, when to stop, how R decays.
+// The robots' Voronoi protocols as one state machine (docs/protocols.md). The variants differ in a
+// rule, not in a file: how many DISCOVER rounds, how R grows, when to stop, how R decays.
 //   radius_doubling — the paper's protocol (paper §III-B) after Cortés et al.
 //   fixed_radius    — one DISCOVER round with a constant R
 //   gabriel         — one round at max range, only Gabriel neighbours bound the cell
@@ -33,13 +33,13 @@ struct RangeDecay {
 
 struct ProtocolParams {
   ProtocolKind kind = ProtocolKind::radius_doubling;
-  double period_s = 0.01;         ///< Δt between updates (paper: 0.01 s)
+  double period_s = 0.01;  ///< Δt between updates (paper: 0.01 s)
   Growth growth = Growth::to_2d;
   StopCriterion criterion = StopCriterion::sensors;
-  bool shrink_on_stop = false;    ///< Cortés: on stop set R ← 2·d exactly
+  bool shrink_on_stop = false;  ///< Cortés: on stop set R ← 2·d exactly
   RangeDecay decay;
-  double reply_timeout_s = 0.002; ///< how long a round waits for replies
-  double fixed_radius = 0.3;      ///< R of `fixed_radius`, world units
+  double reply_timeout_s = 0.002;  ///< how long a round waits for replies
+  double fixed_radius = 0.3;       ///< R of `fixed_radius`, world units
 };
 
 /// What every robot's protocol knows of the deployment.
@@ -98,9 +98,9 @@ class VoronoiProtocol {
   // One update (steps 1-4 of paper §III-B).
   void on_tick();
   void begin_update();
-  void discover_round();            // step 1: detect neighbours within R_i
-  void end_round();                 // step 2: construct V_i within R_i
-  void decide();                    // steps 3-4: d_i, then stop or grow R_i
+  void discover_round();  // step 1: detect neighbours within R_i
+  void end_round();       // step 2: construct V_i within R_i
+  void decide();          // steps 3-4: d_i, then stop or grow R_i
   void finish_update(bool truncated);
   void decay_range();
   void log_update_end() const;
@@ -120,7 +120,7 @@ class VoronoiProtocol {
   const sim::Log* log_;
 
   Phase phase_ = Phase::idle;
-  double radius_m_;                  // R_i, carried over between updates
+  double radius_m_;  // R_i, carried over between updates
   double farthest_reporter_m_ = 0.0;
   std::uint32_t update_ = 0;
   bool tick_pending_ = false;
@@ -134,12 +134,12 @@ class VoronoiProtocol {
 
   // State of the update in progress.
   UpdateRecord record_;
-  Vec2 position_{0, 0};              // p_i for the whole update
+  Vec2 position_{0, 0};  // p_i for the whole update
   std::vector<HeardNeighbour> neighbours_;
   std::vector<HeardReading> readings_;
-  Cell cell_;                        // Ω ∩ bisectors (no disk): the current V_i
-  std::size_t cell_sites_ = 0;       // how many of neighbours_ cell_ was computed from
-  std::vector<Vec2> sensed_cell_;    // the V_i sent in this update's SENSE
+  Cell cell_;                      // Ω ∩ bisectors (no disk): the current V_i
+  std::size_t cell_sites_ = 0;     // how many of neighbours_ cell_ was computed from
+  std::vector<Vec2> sensed_cell_;  // the V_i sent in this update's SENSE
 };
 
 }  // namespace masnet::protocols

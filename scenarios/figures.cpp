@@ -843,8 +843,8 @@ void write_sensors_csv(const fs::path& path, const std::vector<agents::SensorDef
   // Compiled formats into a buffer written in large pieces (a million sensors: 27 MB).
   fmt::memory_buffer rows;
   for (std::size_t i = 0; i < sensors.size(); ++i) {
-    fmt::format_to(std::back_inserter(rows), FMT_COMPILE("{},{},{},{}\n"), i, sensors[i].position.x(),
-                   sensors[i].position.y(), sensors[i].area);
+    fmt::format_to(std::back_inserter(rows), FMT_COMPILE("{},{},{},{}\n"), i,
+                   sensors[i].position.x(), sensors[i].position.y(), sensors[i].area);
     if (rows.size() >= std::size_t{1} << 16) {
       out.write(std::string_view(rows.data(), rows.size()));
       rows.clear();

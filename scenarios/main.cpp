@@ -6,18 +6,18 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <limits>
 #include <iostream>
+#include <limits>
 #include <optional>
 
-#include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
 
 #include "scenarios/figures.hpp"
+#include "scenarios/output_file.hpp"
 #include "scenarios/progress.hpp"
 #include "scenarios/report.hpp"
-#include "scenarios/output_file.hpp"
 #include "scenarios/run.hpp"
 #include "scenarios/run_directory.hpp"
 #include "scenarios/scenario.hpp"
@@ -63,8 +63,9 @@ std::optional<std::uint64_t> parse_seed(const std::string& text, Diagnostic& pro
   const auto [ptr, ec] = std::from_chars(text.data(), end, value);
   if (text.empty() || ec != std::errc() || ptr != end ||
       value > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
-    problem = {"--seed " + shown_text(text), "expected a whole number between 0 and " +
-                                                  std::to_string(std::numeric_limits<std::int64_t>::max())};
+    problem = {"--seed " + shown_text(text),
+               "expected a whole number between 0 and " +
+                   std::to_string(std::numeric_limits<std::int64_t>::max())};
     return std::nullopt;
   }
   return value;
@@ -87,10 +88,11 @@ const std::vector<std::string> kLogLevels{"trace", "debug", "info", "warn", "err
 /// was named. Nothing is logged below warn today, so the default leaves the terminal as it was.
 struct Logging {
   std::shared_ptr<masnet::sim::CheckedFileSink> file;  // null: stderr
-  bool shows_on_terminal = false;                       // lines may land on stderr
+  bool shows_on_terminal = false;                      // lines may land on stderr
 };
 
-std::shared_ptr<spdlog::logger> make_logger(spdlog::sink_ptr sink, spdlog::level::level_enum level) {
+std::shared_ptr<spdlog::logger> make_logger(spdlog::sink_ptr sink,
+                                            spdlog::level::level_enum level) {
   auto logger = std::make_shared<spdlog::logger>("masnet", std::move(sink));
   logger->set_pattern("%v");  // sim::Log writes the simulated-time prefix and the level itself
   logger->set_level(level);
@@ -100,15 +102,17 @@ std::shared_ptr<spdlog::logger> make_logger(spdlog::sink_ptr sink, spdlog::level
 
 /// Every command: the default logger writes to stderr at warn.
 void log_to_stderr() {
-  spdlog::set_default_logger(make_logger(std::make_shared<spdlog::sinks::stderr_sink_mt>(), spdlog::level::warn));
+  spdlog::set_default_logger(
+      make_logger(std::make_shared<spdlog::sinks::stderr_sink_mt>(), spdlog::level::warn));
 }
 
 /// `masnet run`'s --log-level and --log-file. The file is opened (created, or appended to)
 /// before anything is simulated; an empty string means done, otherwise the reason it failed.
 std::string set_up_run_logging(const RunArgs& args, const std::string& out, Logging& logging) {
   const spdlog::level::level_enum level = args.log_level == "error" ? spdlog::level::err
-                                          : args.log_level == "warn" ? spdlog::level::warn
-                                                                     : spdlog::level::from_str(args.log_level);
+                                          : args.log_level == "warn"
+                                              ? spdlog::level::warn
+                                              : spdlog::level::from_str(args.log_level);
   if (args.log_file.empty()) {
     spdlog::default_logger()->set_level(level);
     logging.shows_on_terminal = level < spdlog::level::warn;
@@ -121,10 +125,13 @@ std::string set_up_run_logging(const RunArgs& args, const std::string& out, Logg
   std::error_code log_ec, run_ec;
   const std::filesystem::path log_path =
       std::filesystem::weakly_canonical(std::filesystem::absolute(args.log_file), log_ec);
-  const std::filesystem::path run_dir = std::filesystem::weakly_canonical(normalised_directory(out), run_ec);
-  if (!log_ec && !run_ec && std::mismatch(run_dir.begin(), run_dir.end(), log_path.begin(), log_path.end()).first == run_dir.end())
-    return "the log file '" + args.log_file + "' cannot be inside the run directory '" + run_dir.string() +
-           "', which is replaced at the end of the run";
+  const std::filesystem::path run_dir =
+      std::filesystem::weakly_canonical(normalised_directory(out), run_ec);
+  if (!log_ec && !run_ec &&
+      std::mismatch(run_dir.begin(), run_dir.end(), log_path.begin(), log_path.end()).first ==
+          run_dir.end())
+    return "the log file '" + args.log_file + "' cannot be inside the run directory '" +
+           run_dir.string() + "', which is replaced at the end of the run";
   try {
     logging.file = std::make_shared<masnet::sim::CheckedFileSink>(args.log_file);
   } catch (const std::system_error& e) {
@@ -167,7 +174,8 @@ int command_run(const RunArgs& args) {
   Run run(run_def);
   {
     // Log lines on the terminal would break into the progress line: one or the other.
-    ProgressBar bar(def.duration_s, !args.quiet && !logging.shows_on_terminal && ProgressBar::stderr_is_terminal());
+    ProgressBar bar(def.duration_s,
+                    !args.quiet && !logging.shows_on_terminal && ProgressBar::stderr_is_terminal());
     run.execute([&](double t, std::uint64_t events) { bar.update(t, events); });
   }
   // Figures and report are drawn into the staging folder too, so the published directory is
@@ -299,7 +307,8 @@ int main(int argc, char** argv) {
                   "protocol log on stderr (or --log-file): trace, debug, info, warn, error or off")
       ->check(CLI::IsMember(kLogLevels))
       ->default_str("warn");
-  run->add_option("--log-file", run_args.log_file, "write the log to this file (appended to) instead of stderr");
+  run->add_option("--log-file", run_args.log_file,
+                  "write the log to this file (appended to) instead of stderr");
 
   std::string validate_file;
   std::vector<std::string> validate_sets;

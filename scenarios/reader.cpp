@@ -37,7 +37,8 @@ void ScenarioReader::note_known(const std::string& path) {
   for (std::size_t i = 0; i < path.size(); ++i) {
     generic.push_back(path[i]);
     if (path[i] != '[') continue;
-    while (i + 1 < path.size() && path[i + 1] != ']') ++i;  // drop the index
+    while (i + 1 < path.size() && path[i + 1] != ']')
+      ++i;  // drop the index
   }
   known_paths_.insert(std::move(generic));
 }
@@ -67,14 +68,16 @@ std::string Range::describe(double v) const {
   const bool has_lo = lo > -kMaxMagnitude, has_hi = hi < kMaxMagnitude;
   std::string lower = lo == 0.0 ? (lo_open ? "> 0" : ">= 0") : (lo_open ? "> " : ">= ") + num(lo);
   // A time: "> 0" unless the value is positive but shorter than the clock's resolution.
-  if (lo == kMinTime_s) lower = v > 0.0 && v < lo ? ">= 1e-09 (1 ns, the clock's resolution)" : "> 0";
+  if (lo == kMinTime_s)
+    lower = v > 0.0 && v < lo ? ">= 1e-09 (1 ns, the clock's resolution)" : "> 0";
   const std::string upper = (hi_open ? "< " : "<= ") + num(hi);
   // Bounds at the time and magnitude caps are limits, not the key's natural range: the message
   // names the one that was passed.
   const bool natural_hi = hi < kMaxTime_s;
   std::string bounds;
   if (has_lo && has_hi && natural_hi && lo != kMinTime_s)
-    bounds = std::string("in ") + (lo_open ? "(" : "[") + num(lo) + ", " + num(hi) + (hi_open ? ")" : "]");
+    bounds = std::string("in ") + (lo_open ? "(" : "[") + num(lo) + ", " + num(hi) +
+             (hi_open ? ")" : "]");
   else if (std::isfinite(v) && v > hi)
     bounds = upper;  // past a cap
   else if (has_lo)
@@ -146,7 +149,10 @@ std::string shown_text(std::string_view text) {
 }
 
 Section::Section(ScenarioReader& reader, YAML::Node node, std::string path, std::string pointer)
-    : reader_(&reader), node_(std::move(node)), path_(std::move(path)), pointer_(std::move(pointer)) {}
+    : reader_(&reader),
+      node_(std::move(node)),
+      path_(std::move(path)),
+      pointer_(std::move(pointer)) {}
 
 std::string Section::child_path(std::string_view key) const {
   return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
@@ -166,9 +172,13 @@ YAML::Node Section::child(std::string_view key) const {
   return YAML::Node(YAML::NodeType::Undefined);
 }
 
-bool Section::has(std::string_view key) const { return child(key).IsDefined(); }
+bool Section::has(std::string_view key) const {
+  return child(key).IsDefined();
+}
 
-std::string Section::where() const { return reader_->location(node_, path_); }
+std::string Section::where() const {
+  return reader_->location(node_, path_);
+}
 
 std::string Section::where(std::string_view key) const {
   const YAML::Node value = child(key);
@@ -185,7 +195,8 @@ void Section::warn_at(std::string_view key, const std::string& message) {
 }
 
 void Section::resolve(std::string_view key, nlohmann::json value) {
-  reader_->resolved()[nlohmann::json::json_pointer(pointer_ + "/" + std::string(key))] = std::move(value);
+  reader_->resolved()[nlohmann::json::json_pointer(pointer_ + "/" + std::string(key))] =
+      std::move(value);
 }
 
 namespace {
@@ -216,7 +227,8 @@ double Section::number(std::string_view key, double fallback, Range range) {
     if (!value.IsScalar() || !YAML::convert<double>::decode(value, parsed)) {
       error_at(key, "expected a number, got " + shown(value));
     } else if (!range.contains(parsed)) {
-      error_at(key, "must be " + range.describe(parsed) + " (got " + shown_text(value.Scalar()) + ")");
+      error_at(key,
+               "must be " + range.describe(parsed) + " (got " + shown_text(value.Scalar()) + ")");
     } else {
       result = parsed;
     }
@@ -282,10 +294,12 @@ std::string Section::choose(std::string_view key, const std::vector<std::string>
   if (value.IsDefined()) {
     if (!value.IsScalar() || std::find(names.begin(), names.end(), value.Scalar()) == names.end()) {
       std::string list;
-      for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+      for (const auto& n : names)
+        list += (list.empty() ? "" : ", ") + n;
       std::string message = "expected one of " + list + ", got " + shown(value);
       if (value.IsScalar())
-        if (auto guess = closest(value.Scalar(), names)) message += " (did you mean '" + *guess + "'?)";
+        if (auto guess = closest(value.Scalar(), names))
+          message += " (did you mean '" + *guess + "'?)";
       error_at(key, message);
     } else {
       result = value.Scalar();
@@ -306,7 +320,9 @@ bool decode_point(const YAML::Node& node, Vec2& out) {
   out = Vec2{x, y};
   return true;
 }
-nlohmann::json json_point(const Vec2& p) { return nlohmann::json::array({p.x(), p.y()}); }
+nlohmann::json json_point(const Vec2& p) {
+  return nlohmann::json::array({p.x(), p.y()});
+}
 }  // namespace
 
 namespace {
@@ -360,7 +376,8 @@ std::vector<Vec2> Section::points(std::string_view key, std::size_t min_count) {
     }
   }
   nlohmann::json list = nlohmann::json::array();
-  for (const Vec2& p : result) list.push_back(json_point(p));
+  for (const Vec2& p : result)
+    list.push_back(json_point(p));
   resolve(key, list);
   return result;
 }
@@ -381,7 +398,8 @@ std::vector<double> Section::numbers(std::string_view key, Range range) {
                          item + ": expected a number, got " + shown(value[i]));
         } else if (!range.contains(x)) {
           reader_->error(reader_->location(value[i], child_path(key)),
-                         item + ": must be " + range.describe(x) + " (got " + shown_text(value[i].Scalar()) + ")");
+                         item + ": must be " + range.describe(x) + " (got " +
+                             shown_text(value[i].Scalar()) + ")");
         } else {
           result.push_back(x);
         }
@@ -447,7 +465,8 @@ void Section::finish() {
       const auto [first, inserted] = first_line.emplace(key, it->first.Mark().line + 1);
       if (!inserted) {
         reader_->error(reader_->location(it->first, child_path(key)),
-                       "duplicate key '" + shown_text(key) + "'" + (path_.empty() ? std::string() : " in '" + path_ + "'") +
+                       "duplicate key '" + shown_text(key) + "'" +
+                           (path_.empty() ? std::string() : " in '" + path_ + "'") +
                            " (first given on line " + std::to_string(first->second) + ")");
         continue;
       }
@@ -462,7 +481,8 @@ void Section::finish() {
 
 std::size_t edit_distance(std::string_view a, std::string_view b) {
   std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t j = 0; j <= b.size(); ++j)
+    row[j] = j;
   for (std::size_t i = 1; i <= a.size(); ++i) {
     std::size_t diagonal = row[0];
     row[0] = i;
@@ -475,14 +495,16 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
-std::optional<std::string> closest(std::string_view word, const std::vector<std::string>& candidates) {
+std::optional<std::string> closest(std::string_view word,
+                                   const std::vector<std::string>& candidates) {
   // A plausible typo: at most a third of the word wrong (and at least one edit allowed).
   const std::size_t allowed = std::max<std::size_t>(1, word.size() / 3);
   std::optional<std::string> best;
   std::size_t best_distance = 0;
   for (const auto& c : candidates) {
     // The distance is at least the difference in length: a megabyte key costs nothing.
-    const std::size_t longer = std::max(word.size(), c.size()), shorter = std::min(word.size(), c.size());
+    const std::size_t longer = std::max(word.size(), c.size()),
+                      shorter = std::min(word.size(), c.size());
     if (longer - shorter > allowed) continue;
     const std::size_t d = edit_distance(word, c);
     if (!best || d < best_distance) {

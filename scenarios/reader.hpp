@@ -13,8 +13,8 @@
 #include <utility>
 #include <vector>
 
-#include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
+#include <nlohmann/json.hpp>
 
 #include "net/vec2.hpp"
 
@@ -129,7 +129,8 @@ class Section {
   E choice(std::string_view key, E fallback,
            std::initializer_list<std::pair<std::string_view, E>> options) {
     std::vector<std::string> names;
-    for (const auto& [name, value] : options) names.emplace_back(name);
+    for (const auto& [name, value] : options)
+      names.emplace_back(name);
     const std::string picked = choose(key, names, fallback_name(options, fallback));
     for (const auto& [name, value] : options)
       if (name == picked) return value;
@@ -179,6 +180,7 @@ class Section {
 /// Levenshtein distance, for "did you mean" suggestions.
 std::size_t edit_distance(std::string_view a, std::string_view b);
 /// The closest of `candidates` to `word`, if close enough to be a plausible typo.
-std::optional<std::string> closest(std::string_view word, const std::vector<std::string>& candidates);
+std::optional<std::string> closest(std::string_view word,
+                                   const std::vector<std::string>& candidates);
 
 }  // namespace masnet::scenarios

@@ -19,22 +19,30 @@ constexpr std::size_t kWriteChunkBytes = std::size_t{1} << 16;  // buffered rows
 
 std::string_view protocol_name(protocols::ProtocolKind kind) {
   switch (kind) {
-    case protocols::ProtocolKind::none: return "none";
-    case protocols::ProtocolKind::radius_doubling: return "radius_doubling";
-    case protocols::ProtocolKind::oracle: return "oracle";
-    case protocols::ProtocolKind::fixed_radius: return "fixed_radius";
-    case protocols::ProtocolKind::gabriel: return "gabriel";
+    case protocols::ProtocolKind::none:
+      return "none";
+    case protocols::ProtocolKind::radius_doubling:
+      return "radius_doubling";
+    case protocols::ProtocolKind::oracle:
+      return "oracle";
+    case protocols::ProtocolKind::fixed_radius:
+      return "fixed_radius";
+    case protocols::ProtocolKind::gabriel:
+      return "gabriel";
   }
   return "?";
 }
 
-nlohmann::json point(const Vec2& p) { return nlohmann::json::array({p.x(), p.y()}); }
+nlohmann::json point(const Vec2& p) {
+  return nlohmann::json::array({p.x(), p.y()});
+}
 
 }  // namespace
 
 Recorder::Recorder(agents::World& world, const ScenarioDef& def) : world_(world), def_(def) {}
 
-void Recorder::assign_sensors(const std::vector<Vec2>& robots, std::vector<std::uint32_t>& nearest) const {
+void Recorder::assign_sensors(const std::vector<Vec2>& robots,
+                              std::vector<std::uint32_t>& nearest) const {
   const std::size_t n_sensors = world_.sensor_count();
   nearest.assign(n_sensors, 0);
   if (robots.empty()) return;
@@ -57,7 +65,8 @@ void Recorder::assign_sensors(const std::vector<Vec2>& robots, std::vector<std::
     return;
   }
   std::vector<sim::NodeId> ids;
-  for (std::uint32_t i = 0; i < robots.size(); ++i) ids.push_back(sim::node_id(i));
+  for (std::uint32_t i = 0; i < robots.size(); ++i)
+    ids.push_back(sim::node_id(i));
   net::SpatialGrid grid;
   grid.build(robots, ids);
   const double start_radius = std::max(grid.cell_size(), 1e-9);
@@ -88,7 +97,8 @@ void Recorder::sample() {
   row.t_s = sim::to_seconds(world_.simulator().now());
   const std::size_t n_robots = world_.robot_count(), n_sensors = world_.sensor_count();
   std::vector<Vec2> robots(n_robots);
-  for (std::size_t i = 0; i < n_robots; ++i) robots[i] = world_.robot_state(i).position;
+  for (std::size_t i = 0; i < n_robots; ++i)
+    robots[i] = world_.robot_state(i).position;
 
   // Coverage cost and true centroids over the sensor-sampled density SK(ρ)·A.
   std::vector<std::uint32_t> nearest;
@@ -131,7 +141,8 @@ void Recorder::sample() {
     row.robots_per_target.assign(targets.size(), 0);
     for (const Vec2& target : targets) {
       double best = std::numeric_limits<double>::infinity();
-      for (const Vec2& p : robots) best = std::min(best, (p - target).norm());
+      for (const Vec2& p : robots)
+        best = std::min(best, (p - target).norm());
       row.tracking_mean += best / static_cast<double>(targets.size());
       row.tracking_max = std::max(row.tracking_max, best);
     }
@@ -148,19 +159,24 @@ void Recorder::sample() {
       ++row.robots_per_target[static_cast<std::size_t>(group[i])];
     }
     if (!last_group_.empty())
-      for (std::size_t i = 0; i < n_robots; ++i) group_changes_ += group[i] != last_group_[i] ? 1 : 0;
+      for (std::size_t i = 0; i < n_robots; ++i)
+        group_changes_ += group[i] != last_group_[i] ? 1 : 0;
     last_group_ = group;
   }
   if (const agents::DiffusionField* field = world_.diffusion()) {
     row.pollution_total = world_.pollution_total();
     row.pollution_integral = field->mass();
     row.pollution_max = field->peak();
-    for (std::size_t i = 0; i < n_robots; ++i) row.neutraliser_used += world_.neutraliser_used(i);
+    for (std::size_t i = 0; i < n_robots; ++i)
+      row.neutraliser_used += world_.neutraliser_used(i);
   }
   row.updates = updates_.size();
-  row.cell_correctness = updates_.empty() ? 1.0 : static_cast<double>(correct_updates_) / static_cast<double>(updates_.size());
-  row.cell_correctness_heard =
-      updates_.empty() ? 1.0 : static_cast<double>(correct_heard_updates_) / static_cast<double>(updates_.size());
+  row.cell_correctness = updates_.empty() ? 1.0
+                                          : static_cast<double>(correct_updates_) /
+                                                static_cast<double>(updates_.size());
+  row.cell_correctness_heard = updates_.empty() ? 1.0
+                                                : static_cast<double>(correct_heard_updates_) /
+                                                      static_cast<double>(updates_.size());
   samples_.push_back(std::move(row));
 }
 
@@ -191,30 +207,41 @@ void Recorder::snapshot() {
     r["target"] = point(world_.robot_target(i));
     r["radius"] = world_.robot_protocol(i).radius();
     nlohmann::json cell = nlohmann::json::array();
-    for (const Vec2& v : world_.robot_protocol(i).cell().vertices) cell.push_back(point(v));
+    for (const Vec2& v : world_.robot_protocol(i).cell().vertices)
+      cell.push_back(point(v));
     r["cell"] = cell;
     nlohmann::json oracle = nlohmann::json::array();
-    for (const Vec2& v : world_.oracle_cell(i).polygon.vertices) oracle.push_back(point(v));
+    for (const Vec2& v : world_.oracle_cell(i).polygon.vertices)
+      oracle.push_back(point(v));
     r["oracle_cell"] = oracle;
     robots.push_back(r);
   }
   snap["robots"] = robots;
   nlohmann::json readings = nlohmann::json::array();
-  for (std::size_t s = 0; s < world_.sensor_count(); ++s) readings.push_back(world_.true_density(s));
+  for (std::size_t s = 0; s < world_.sensor_count(); ++s)
+    readings.push_back(world_.true_density(s));
   snap["readings"] = readings;
   nlohmann::json sources = nlohmann::json::array();
   const double t = snap["t"];
   for (const agents::PathDef& p : world_.def().field.targets)
-    sources.push_back({{"position", point(agents::position_on(p, t))}, {"heading", point(agents::heading_on(p, t))}});
+    sources.push_back({{"position", point(agents::position_on(p, t))},
+                       {"heading", point(agents::heading_on(p, t))}});
   for (const agents::GaussianBump& b : world_.def().field.bumps)
-    sources.push_back({{"position", point(agents::position_on(b.path, t))}, {"heading", point(agents::heading_on(b.path, t))}});
+    sources.push_back({{"position", point(agents::position_on(b.path, t))},
+                       {"heading", point(agents::heading_on(b.path, t))}});
   for (const agents::SourceDef& src : world_.def().field.sources)
-    sources.push_back({{"position", point(agents::position_on(src.path, t))}, {"heading", point(agents::heading_on(src.path, t))}});
+    sources.push_back({{"position", point(agents::position_on(src.path, t))},
+                       {"heading", point(agents::heading_on(src.path, t))}});
   snap["sources"] = sources;
   if (const agents::DiffusionField* field = world_.diffusion()) {
     const auto& p = field->params();
     const auto values = field->values();
-    snap["field"] = {{"nx", field->nx()}, {"ny", field->ny()}, {"x0", p.x0}, {"y0", p.y0}, {"x1", p.x1}, {"y1", p.y1},
+    snap["field"] = {{"nx", field->nx()},
+                     {"ny", field->ny()},
+                     {"x0", p.x0},
+                     {"y0", p.y0},
+                     {"x1", p.x1},
+                     {"y1", p.y1},
                      {"values", std::vector<double>(values.begin(), values.end())}};
   }
   snapshots_.push_back(std::move(snap));
@@ -227,9 +254,11 @@ void Recorder::on_update(std::size_t robot, const protocols::UpdateRecord& recor
   if (def_.world.protocol.kind != protocols::ProtocolKind::oracle) {
     // The robot's own cell is a good guess of the true one's reach (Cortés' rule needs twice the
     // farthest vertex; a quarter more spares most doublings).
-    const double guess = 2.5 * protocols::max_vertex_distance(record.cell, world_.robot_state(robot).position);
+    const double guess =
+        2.5 * protocols::max_vertex_distance(record.cell, world_.robot_state(robot).position);
     row.correct = world_.oracle_cell(robot, guess).neighbours == record.neighbours;
-    row.correct_heard = protocols::heard_neighbours(record.position, record.heard, world_.def().domain) == record.neighbours;
+    row.correct_heard = protocols::heard_neighbours(record.position, record.heard,
+                                                    world_.def().domain) == record.neighbours;
   }
   correct_updates_ += row.correct ? 1 : 0;
   correct_heard_updates_ += row.correct_heard ? 1 : 0;
@@ -243,23 +272,32 @@ void Recorder::on_battery_empty(sim::NodeId node) {
 
 void Recorder::write_timeseries(const std::string& path) const {
   OutputFile out(path);
-  const std::size_t targets = def_.world.field.kind == agents::FieldKind::acoustic ? def_.world.field.targets.size() : 0;
-  out.print("t_s,coverage_cost,mean_dist_to_centroid,max_dist_to_centroid,mean_radius,messages,bytes,energy_j,"
-            "updates,cell_correctness,cell_correctness_heard");
+  const std::size_t targets =
+      def_.world.field.kind == agents::FieldKind::acoustic ? def_.world.field.targets.size() : 0;
+  out.print(
+      "t_s,coverage_cost,mean_dist_to_centroid,max_dist_to_centroid,mean_radius,messages,bytes,"
+      "energy_j,"
+      "updates,cell_correctness,cell_correctness_heard");
   if (targets) out.print(",tracking_error_mean,tracking_error_max");
-  for (std::size_t k = 0; k < targets; ++k) out.print(",robots_target_{}", k);
+  for (std::size_t k = 0; k < targets; ++k)
+    out.print(",robots_target_{}", k);
   const bool pollution = world_.diffusion() != nullptr;
   if (pollution) out.print(",pollution_total,pollution_integral,pollution_max,neutraliser_used");
-  if (pollution && has_baseline_) out.print(",pollution_total_baseline,pollution_integral_baseline");
+  if (pollution && has_baseline_)
+    out.print(",pollution_total_baseline,pollution_integral_baseline");
   out.print("\n");
   for (const Sample& s : samples_) {
     out.print("{},{},{},{},{},{},{},{},{},{},{}", s.t_s, s.coverage_cost, s.mean_dist_to_centroid,
-              s.max_dist_to_centroid, s.mean_radius, s.messages, s.bytes, s.energy_j, s.updates, s.cell_correctness,
-              s.cell_correctness_heard);
+              s.max_dist_to_centroid, s.mean_radius, s.messages, s.bytes, s.energy_j, s.updates,
+              s.cell_correctness, s.cell_correctness_heard);
     if (targets) out.print(",{},{}", s.tracking_mean, s.tracking_max);
-    for (std::size_t k = 0; k < targets; ++k) out.print(",{}", k < s.robots_per_target.size() ? s.robots_per_target[k] : 0);
-    if (pollution) out.print(",{},{},{},{}", s.pollution_total, s.pollution_integral, s.pollution_max, s.neutraliser_used);
-    if (pollution && has_baseline_) out.print(",{},{}", s.pollution_total_baseline, s.pollution_integral_baseline);
+    for (std::size_t k = 0; k < targets; ++k)
+      out.print(",{}", k < s.robots_per_target.size() ? s.robots_per_target[k] : 0);
+    if (pollution)
+      out.print(",{},{},{},{}", s.pollution_total, s.pollution_integral, s.pollution_max,
+                s.neutraliser_used);
+    if (pollution && has_baseline_)
+      out.print(",{},{}", s.pollution_total_baseline, s.pollution_integral_baseline);
     out.print("\n");
   }
   out.close();
@@ -269,24 +307,28 @@ void Recorder::write_trajectories(const std::string& path) const {
   OutputFile out(path);
   out.print("t_s,robot,x,y,vx,vy,radius,cx,cy\n");
   for (const TrajectoryRow& r : trajectories_)
-    out.print("{},{},{},{},{},{},{},{},{}\n", r.t_s, r.robot, r.position.x(), r.position.y(), r.velocity.x(),
-              r.velocity.y(), r.radius, r.target.x(), r.target.y());
+    out.print("{},{},{},{},{},{},{},{},{}\n", r.t_s, r.robot, r.position.x(), r.position.y(),
+              r.velocity.x(), r.velocity.y(), r.radius, r.target.x(), r.target.y());
   out.close();
 }
 
 void Recorder::write_updates(const std::string& path) const {
   OutputFile out(path);
-  out.print("robot,update,t_start_s,t_end_s,latency_s,rounds,radius,truncated,delayed,no_mass,readings,"
-            "neighbours,correct,correct_heard,cx,cy");
-  for (std::size_t t = 0; t < net::kMessageTypeCount; ++t) out.print(",{0}_count,{0}_bytes", net::kMessageTypeNames[t]);
+  out.print(
+      "robot,update,t_start_s,t_end_s,latency_s,rounds,radius,truncated,delayed,no_mass,readings,"
+      "neighbours,correct,correct_heard,cx,cy");
+  for (std::size_t t = 0; t < net::kMessageTypeCount; ++t)
+    out.print(",{0}_count,{0}_bytes", net::kMessageTypeNames[t]);
   out.print("\n");
   for (const UpdateRow& u : updates_) {
     const auto& r = u.record;
-    out.print("{},{},{},{},{},{},{},{:d},{:d},{:d},{},{},{:d},{:d},{},{}", sim::index(r.robot), r.update,
-              sim::to_seconds(r.started), sim::to_seconds(r.finished), sim::to_seconds(r.finished - r.started),
-              r.rounds, r.radius, r.truncated, r.delayed, r.no_mass, r.readings, r.neighbours.size(), u.correct,
-              u.correct_heard, r.centroid.x(), r.centroid.y());
-    for (const auto& tally : r.messages) out.print(",{},{}", tally.count, tally.bytes);
+    out.print("{},{},{},{},{},{},{},{:d},{:d},{:d},{},{},{:d},{:d},{},{}", sim::index(r.robot),
+              r.update, sim::to_seconds(r.started), sim::to_seconds(r.finished),
+              sim::to_seconds(r.finished - r.started), r.rounds, r.radius, r.truncated, r.delayed,
+              r.no_mass, r.readings, r.neighbours.size(), u.correct, u.correct_heard,
+              r.centroid.x(), r.centroid.y());
+    for (const auto& tally : r.messages)
+      out.print(",{},{}", tally.count, tally.bytes);
     out.print("\n");
   }
   out.close();
@@ -294,9 +336,12 @@ void Recorder::write_updates(const std::string& path) const {
 
 void Recorder::write_nodes(const std::string& path) const {
   OutputFile out(path);
-  out.print("node,role,index,x,y,alive,died_at_s,energy_j,energy_tx_j,energy_rx_j,energy_idle_j,tx_count,tx_bytes,"
-            "rx_count,rx_bytes,overheard_count,heard_bytes,lost_count,unreachable_count,refused_count");
-  for (std::size_t t = 0; t < net::kMessageTypeCount; ++t) out.print(",tx_{0},rx_{0}", net::kMessageTypeNames[t]);
+  out.print(
+      "node,role,index,x,y,alive,died_at_s,energy_j,energy_tx_j,energy_rx_j,energy_idle_j,tx_count,"
+      "tx_bytes,"
+      "rx_count,rx_bytes,overheard_count,heard_bytes,lost_count,unreachable_count,refused_count");
+  for (std::size_t t = 0; t < net::kMessageTypeCount; ++t)
+    out.print(",tx_{0},rx_{0}", net::kMessageTypeNames[t]);
   out.print("\n");
   net::Radio& radio = world_.radio();
   // Rows are formatted with compiled formats into a buffer written in large pieces: a million
@@ -318,11 +363,13 @@ void Recorder::write_nodes(const std::string& path) const {
       rx += c.rx_count;
       rxb += c.rx_bytes;
     }
-    fmt::format_to(it, FMT_COMPILE("{},{},{},{},{},{},"), n, robot ? "robot" : "sensor", index, p.x(), p.y(), s.alive ? 1 : 0);
+    fmt::format_to(it, FMT_COMPILE("{},{},{},{},{},{},"), n, robot ? "robot" : "sensor", index,
+                   p.x(), p.y(), s.alive ? 1 : 0);
     if (!s.alive) fmt::format_to(it, FMT_COMPILE("{}"), sim::to_seconds(s.died_at));
     fmt::format_to(it, FMT_COMPILE(",{},{},{},{},{},{},{},{},{},{},{},{},{}"),
-                   s.energy_tx_j + s.energy_rx_j + s.energy_idle_j, s.energy_tx_j, s.energy_rx_j, s.energy_idle_j, tx,
-                   txb, rx, rxb, s.overheard_count, s.heard_bytes, s.lost_count, s.unreachable_count, s.refused_count);
+                   s.energy_tx_j + s.energy_rx_j + s.energy_idle_j, s.energy_tx_j, s.energy_rx_j,
+                   s.energy_idle_j, tx, txb, rx, rxb, s.overheard_count, s.heard_bytes,
+                   s.lost_count, s.unreachable_count, s.refused_count);
     for (std::size_t t = 0; t < net::kMessageTypeCount; ++t) {
       const auto& c = radio.counters(id, static_cast<net::MessageType>(t));
       fmt::format_to(it, FMT_COMPILE(",{},{}"), c.tx_count, c.rx_count);
@@ -345,7 +392,8 @@ namespace {
 
 // Peak, final, final/peak, whether the curve never rises after its peak, and the first time it
 // falls below `threshold` after the peak (null if never).
-nlohmann::json curve_summary(const std::vector<Sample>& samples, double Sample::*value, double threshold_or_zero) {
+nlohmann::json curve_summary(const std::vector<Sample>& samples, double Sample::*value,
+                             double threshold_or_zero) {
   std::size_t peak_at = 0;
   for (std::size_t k = 0; k < samples.size(); ++k)
     if (samples[k].*value > samples[peak_at].*value) peak_at = k;
@@ -380,14 +428,17 @@ nlohmann::json Recorder::pollution_summary() const {
   p["integral_final"] = samples_.back().pollution_integral;
   p["neutraliser_used"] = samples_.back().neutraliser_used;
   std::vector<double> per_robot;
-  for (std::size_t i = 0; i < world_.robot_count(); ++i) per_robot.push_back(world_.neutraliser_used(i));
+  for (std::size_t i = 0; i < world_.robot_count(); ++i)
+    per_robot.push_back(world_.neutraliser_used(i));
   p["neutraliser_per_robot"] = per_robot;
   if (has_baseline_) {
-    nlohmann::json b = curve_summary(samples_, &Sample::pollution_total_baseline, def_.clean_threshold);
+    nlohmann::json b =
+        curve_summary(samples_, &Sample::pollution_total_baseline, def_.clean_threshold);
     b["integral_final"] = samples_.back().pollution_integral_baseline;
     p["baseline"] = b;
     const double base_final = samples_.back().pollution_total_baseline;
-    p["final_over_baseline_final"] = base_final != 0 ? samples_.back().pollution_total / base_final : 0.0;
+    p["final_over_baseline_final"] =
+        base_final != 0 ? samples_.back().pollution_total / base_final : 0.0;
   }
   return p;
 }
@@ -402,13 +453,16 @@ nlohmann::json Recorder::summary_metrics() const {
     const auto& c = radio.totals(static_cast<net::MessageType>(t));
     count += c.tx_count;
     bytes += c.tx_bytes;
-    by_type[std::string(net::kMessageTypeNames[t])] = {
-        {"count", c.tx_count}, {"bytes", c.tx_bytes}, {"rx_count", c.rx_count}, {"rx_bytes", c.rx_bytes}};
+    by_type[std::string(net::kMessageTypeNames[t])] = {{"count", c.tx_count},
+                                                       {"bytes", c.tx_bytes},
+                                                       {"rx_count", c.rx_count},
+                                                       {"rx_bytes", c.rx_bytes}};
   }
   j["messages"] = {{"total", {{"count", count}, {"bytes", bytes}}}, {"by_type", by_type}};
 
   // Energy: per node, then totals.
-  double tx = 0, rx = 0, idle = 0, max_node = 0, robots_total = 0, sensors_total = 0, max_sensor = 0;
+  double tx = 0, rx = 0, idle = 0, max_node = 0, robots_total = 0, sensors_total = 0,
+         max_sensor = 0;
   std::uint64_t dead = 0;
   for (std::uint32_t n = 0; n < radio.node_count(); ++n) {
     const sim::NodeId id = sim::node_id(n);
@@ -427,11 +481,16 @@ nlohmann::json Recorder::summary_metrics() const {
     }
   }
   const double nodes = std::max<double>(1.0, static_cast<double>(radio.node_count()));
-  j["energy_j"] = {{"total", tx + rx + idle},      {"radio_tx", tx},
-                   {"radio_rx", rx},               {"idle", idle},
-                   {"per_node_max", max_node},     {"per_node_mean", (tx + rx + idle) / nodes},
-                   {"robots_total", robots_total}, {"sensors_total", sensors_total},
-                   {"per_sensor_max", max_sensor}, {"nodes_dead", dead}};
+  j["energy_j"] = {{"total", tx + rx + idle},
+                   {"radio_tx", tx},
+                   {"radio_rx", rx},
+                   {"idle", idle},
+                   {"per_node_max", max_node},
+                   {"per_node_mean", (tx + rx + idle) / nodes},
+                   {"robots_total", robots_total},
+                   {"sensors_total", sensors_total},
+                   {"per_sensor_max", max_sensor},
+                   {"nodes_dead", dead}};
 
   // Protocol statistics over all updates.
   nlohmann::json p;
@@ -463,8 +522,10 @@ nlohmann::json Recorder::summary_metrics() const {
   p["rounds_mean"] = rounds / div;
   p["rounds_max"] = rounds_max;
   p["truncated"] = truncated;
-  p["cell_correctness"] = updates_.empty() ? 1.0 : static_cast<double>(correct_updates_) / n_updates;
-  p["cell_correctness_heard"] = updates_.empty() ? 1.0 : static_cast<double>(correct_heard_updates_) / n_updates;
+  p["cell_correctness"] =
+      updates_.empty() ? 1.0 : static_cast<double>(correct_updates_) / n_updates;
+  p["cell_correctness_heard"] =
+      updates_.empty() ? 1.0 : static_cast<double>(correct_heard_updates_) / n_updates;
   p["delayed_updates"] = delayed;
   p["no_mass_updates"] = no_mass;
   p["latency_mean_s"] = latency / div;

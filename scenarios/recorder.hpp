@@ -17,22 +17,22 @@ namespace masnet::scenarios {
 /// One row of timeseries.csv.
 struct Sample {
   double t_s = 0;
-  double coverage_cost = 0;         ///< Σ_s ρ(s)·A(s)·‖s − p_nearest‖² (discrete eq. 1)
-  double mean_dist_to_centroid = 0; ///< ‖p_i − c_i‖ with c_i the true centroid of i's cell
+  double coverage_cost = 0;          ///< Σ_s ρ(s)·A(s)·‖s − p_nearest‖² (discrete eq. 1)
+  double mean_dist_to_centroid = 0;  ///< ‖p_i − c_i‖ with c_i the true centroid of i's cell
   double max_dist_to_centroid = 0;
-  double mean_radius = 0;           ///< mean R_i
-  std::uint64_t messages = 0, bytes = 0;  ///< transmissions so far
-  double energy_j = 0;              ///< radio energy so far, all nodes
+  double mean_radius = 0;                      ///< mean R_i
+  std::uint64_t messages = 0, bytes = 0;       ///< transmissions so far
+  double energy_j = 0;                         ///< radio energy so far, all nodes
   double tracking_mean = 0, tracking_max = 0;  ///< distance from targets to their nearest robot
   std::vector<std::uint32_t> robots_per_target;
-  double cell_correctness = 1.0;    ///< share of updates so far with the oracle's neighbour set
+  double cell_correctness = 1.0;        ///< share of updates so far with the oracle's neighbour set
   double cell_correctness_heard = 1.0;  ///< the same against the cell of the positions heard
   std::uint64_t updates = 0;
   // Diffusion runs (paper §VI-B).
-  double pollution_total = 0;       ///< Σ of the sensors' readings (paper Fig. 6)
-  double pollution_integral = 0;    ///< ∫u dA by the solver's quadrature
-  double pollution_max = 0;         ///< max u over the PDE grid
-  double neutraliser_used = 0;      ///< released by all dispensers so far
+  double pollution_total = 0;     ///< Σ of the sensors' readings (paper Fig. 6)
+  double pollution_integral = 0;  ///< ∫u dA by the solver's quadrature
+  double pollution_max = 0;       ///< max u over the PDE grid
+  double neutraliser_used = 0;    ///< released by all dispensers so far
   double pollution_total_baseline = 0, pollution_integral_baseline = 0;  ///< same run, no control
 };
 
@@ -40,9 +40,9 @@ class Recorder final : public agents::WorldObserver {
  public:
   Recorder(agents::World& world, const ScenarioDef& def);
 
-  void sample();             ///< a timeseries row at the current time
-  void sample_trajectories();///< a trajectories row per robot
-  void snapshot();           ///< the state for a snapshot figure
+  void sample();               ///< a timeseries row at the current time
+  void sample_trajectories();  ///< a trajectories row per robot
+  void snapshot();             ///< the state for a snapshot figure
 
   void on_update(std::size_t robot, const protocols::UpdateRecord& record) override;
   void on_battery_empty(sim::NodeId node) override;
@@ -65,8 +65,8 @@ class Recorder final : public agents::WorldObserver {
  private:
   struct UpdateRow {
     protocols::UpdateSummary record;  // the robots heard are judged, not kept
-    bool correct = false;        ///< the neighbour set of the true positions at the end
-    bool correct_heard = false;  ///< the neighbour set of the positions the update heard
+    bool correct = false;             ///< the neighbour set of the true positions at the end
+    bool correct_heard = false;       ///< the neighbour set of the positions the update heard
   };
   struct TrajectoryRow {
     double t_s;

@@ -304,7 +304,6 @@ constexpr const char* kReportScript = R"(
 })();
 )";
 
-
 std::string messages_table(const json& summary) {
   if (!summary.contains("messages")) return "<p>No message statistics.</p>\n";
   const json& m = summary["messages"];

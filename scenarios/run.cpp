@@ -5,8 +5,8 @@
 
 #include "scenarios/output_file.hpp"
 #include "scenarios/run_warnings.hpp"
-#include "sim/log.hpp"
 #include "sim/fingerprint.hpp"
+#include "sim/log.hpp"
 
 namespace masnet::scenarios {
 namespace fs = std::filesystem;
@@ -21,9 +21,15 @@ Run::Run(ScenarioDef def)
 
 Run::~Run() = default;
 
-std::uint64_t Run::events() const { return simulator_->events_run(); }
-std::string Run::fingerprint() const { return simulator_->fingerprint().hex(); }
-std::string Run::traffic_fingerprint() const { return traffic_fingerprint_; }
+std::uint64_t Run::events() const {
+  return simulator_->events_run();
+}
+std::string Run::fingerprint() const {
+  return simulator_->fingerprint().hex();
+}
+std::string Run::traffic_fingerprint() const {
+  return traffic_fingerprint_;
+}
 
 namespace {
 // Events between two progress calls while a chunk runs: a few microseconds of wall time each,
@@ -40,7 +46,8 @@ void Run::execute(const ProgressFn& progress) {
   const sim::Duration sample = sim::seconds(def_.output.sample_period_s);
   const sim::Duration trajectory = sim::seconds(def_.output.trajectory_period_s);
   std::vector<sim::Time> snapshots;
-  for (double t : def_.output.snapshots) snapshots.push_back(sim::time_at(t));
+  for (double t : def_.output.snapshots)
+    snapshots.push_back(sim::time_at(t));
   std::sort(snapshots.begin(), snapshots.end());
   std::int64_t next_sample = 0, next_trajectory = 0;
   std::size_t next_snapshot = 0;
@@ -48,9 +55,10 @@ void Run::execute(const ProgressFn& progress) {
   // kernel calls back every few thousand events, and the callee decides from the wall clock
   // whether to draw.
   if (progress)
-    simulator_->set_progress_hook(kProgressEveryEvents, [&progress](sim::Time now, std::uint64_t events) {
-      progress(sim::to_seconds(now), events);
-    });
+    simulator_->set_progress_hook(kProgressEveryEvents,
+                                  [&progress](sim::Time now, std::uint64_t events) {
+                                    progress(sim::to_seconds(now), events);
+                                  });
   for (;;) {
     const sim::Time t_sample = sim::kTimeZero + next_sample * sample;
     const sim::Time t_trajectory = sim::kTimeZero + next_trajectory * trajectory;
@@ -74,8 +82,10 @@ void Run::execute(const ProgressFn& progress) {
   }
   simulator_->set_progress_hook(0, nullptr);
   // The final state is always sampled, whatever the period.
-  if (recorder_->samples().empty() || recorder_->samples().back().t_s != def_.duration_s) recorder_->sample();
-  traffic_fingerprint_ = world_->radio().traffic_fingerprint().hex();  // a pass over every node: once
+  if (recorder_->samples().empty() || recorder_->samples().back().t_s != def_.duration_s)
+    recorder_->sample();
+  traffic_fingerprint_ =
+      world_->radio().traffic_fingerprint().hex();  // a pass over every node: once
   if (def_.baseline && def_.world.dispenser.enabled) {
     // The uncontrolled twin: same scenario and seed, dispensers off, so that with/without
     // control always sit side by side (docs/field-models.md).
@@ -84,12 +94,14 @@ void Run::execute(const ProgressFn& progress) {
     twin.baseline = false;
     twin.output.snapshots.clear();
     Run baseline(twin);
-    sim::Log(*simulator_).info("the baseline twin (no dispensers) runs now; its clock starts again at 0");
+    sim::Log(*simulator_)
+        .info("the baseline twin (no dispensers) runs now; its clock starts again at 0");
     baseline.execute();
     recorder_->attach_baseline(baseline.recorder().samples());
     baseline_fingerprint_ = baseline.fingerprint();
   }
-  wall_time_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  wall_time_s_ =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 }
 
 nlohmann::json Run::summary() const {
@@ -127,7 +139,8 @@ void Run::write_files(const std::string& dir) const {
 std::string run_key(const ScenarioDef& def) {
   sim::Fingerprint h;
   const std::string text = std::string(MASNET_VERSION) + "\n" + def.resolved.dump();
-  for (unsigned char c : text) h.mix(std::uint64_t{c});
+  for (unsigned char c : text)
+    h.mix(std::uint64_t{c});
   return h.hex();
 }
 

@@ -18,7 +18,8 @@ namespace fs = std::filesystem;
 
 fs::path normalised_directory(const std::string& dir) {
   fs::path p = fs::absolute(dir).lexically_normal();
-  while (!p.has_filename() && p.has_relative_path()) p = p.parent_path();
+  while (!p.has_filename() && p.has_relative_path())
+    p = p.parent_path();
   return p;
 }
 
@@ -37,7 +38,8 @@ fs::path resolved(const fs::path& p) {
   std::error_code ec;
   fs::path r = fs::weakly_canonical(p, ec);
   if (ec) return p;
-  while (!r.has_filename() && r.has_relative_path()) r = r.parent_path();
+  while (!r.has_filename() && r.has_relative_path())
+    r = r.parent_path();
   return r;
 }
 
@@ -68,7 +70,8 @@ std::string forbidden_output_directory(const std::string& dir, std::string_view 
 std::string probe_writable(const std::string& dir) {
   std::error_code ec;
   fs::path p = normalised_directory(dir);
-  while (!fs::exists(p, ec) && p.has_relative_path()) p = p.parent_path();
+  while (!fs::exists(p, ec) && p.has_relative_path())
+    p = p.parent_path();
   if (!fs::is_directory(p, ec))
     return "cannot create '" + dir + "': '" + p.string() + "' is not a directory";
   // A real file, not access(2): root passes every permission check, not a read-only mount.

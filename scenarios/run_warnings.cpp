@@ -29,29 +29,34 @@ std::vector<std::string> run_warnings(const nlohmann::json& summary, double loss
     // Without loss, a low figure with every heard cell right is robots moving during their
     // updates (the first instants of a run from a grid): no degradation. Loss, or cells wrong
     // even for what the robots heard, is.
-    const double heard = protocol.contains("cell_correctness_heard") ? number(protocol, "cell_correctness_heard") : 0.0;
+    const double heard = protocol.contains("cell_correctness_heard")
+                             ? number(protocol, "cell_correctness_heard")
+                             : 0.0;
     if (correctness < kLowCorrectness && (loss_probability > 0 || heard < 0.9))
-      warnings.push_back(fmt::format(
-          "only {:.1f} % of the updates built the robot's true Voronoi cell (cell correctness {:.3f}){}: "
-          "the protocol's cells, costs and figures describe a degraded run",
-          100.0 * correctness, correctness, loss));
+      warnings.push_back(
+          fmt::format("only {:.1f} % of the updates built the robot's true Voronoi cell (cell "
+                      "correctness {:.3f}){}: "
+                      "the protocol's cells, costs and figures describe a degraded run",
+                      100.0 * correctness, correctness, loss));
     const double truncated = number(protocol, "truncated");
     if (truncated > kManyTruncated * updates)
-      warnings.push_back(fmt::format(
-          "{:.0f} of {:.0f} updates stopped at their radius cap (radio.max_range; protocol.radius for "
-          "fixed_radius) before their cell was certain{}",
-          truncated, updates, loss));
+      warnings.push_back(
+          fmt::format("{:.0f} of {:.0f} updates stopped at their radius cap (radio.max_range; "
+                      "protocol.radius for "
+                      "fixed_radius) before their cell was certain{}",
+                      truncated, updates, loss));
     const double no_mass = number(protocol, "no_mass_updates");
     if (no_mass > kManyWithoutMass * updates)
       warnings.push_back(fmt::format(
-          "{:.0f} of {:.0f} updates heard no sensor reading with mass: those robots did not move", no_mass,
-          updates));
+          "{:.0f} of {:.0f} updates heard no sensor reading with mass: those robots did not move",
+          no_mass, updates));
   } else if (protocol.value("name", std::string()) != "none" && protocol.contains("name")) {
     warnings.push_back("no robot completed a protocol update during the run");
   }
   const nlohmann::json energy = summary.value("energy_j", nlohmann::json::object());
   if (const double dead = number(energy, "nodes_dead"); dead > 0)
-    warnings.push_back(fmt::format("{:.0f} node{} ran out of battery during the run", dead, dead == 1 ? "" : "s"));
+    warnings.push_back(
+        fmt::format("{:.0f} node{} ran out of battery during the run", dead, dead == 1 ? "" : "s"));
   return warnings;
 }
 

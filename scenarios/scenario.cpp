@@ -28,7 +28,8 @@ std::vector<std::string> split_path(const std::string& path) {
   std::vector<std::string> parts;
   std::stringstream in(path);
   std::string part;
-  while (std::getline(in, part, '.')) parts.push_back(part);
+  while (std::getline(in, part, '.'))
+    parts.push_back(part);
   return parts;
 }
 
@@ -73,9 +74,10 @@ bool apply_override(YAML::Node& root, const std::string& text, std::vector<Overr
       next.reset(node[parts[i]]);
     } else if (!next.IsMap()) {
       std::string prefix;
-      for (std::size_t k = 0; k <= i; ++k) prefix += (k ? "." : "") + parts[k];
-      diagnostics.push_back(
-          {where, "'" + shown_text(prefix) + "' is not a section, cannot set '" + shown_text(path) + "'"});
+      for (std::size_t k = 0; k <= i; ++k)
+        prefix += (k ? "." : "") + parts[k];
+      diagnostics.push_back({where, "'" + shown_text(prefix) + "' is not a section, cannot set '" +
+                                        shown_text(path) + "'"});
       return false;
     }
     node.reset(next);
@@ -127,10 +129,13 @@ agents::PathDef read_path(Section& s) {
     s.reject("center", "give either 'center' (with 'velocity') or 'waypoints', not both");
     s.reject("velocity", "'velocity' goes with 'start'; waypoints move at 'speed'");
   } else {
-    if (!s.has("start") && !s.has("center")) s.error_at("start", "missing 'start: [x, y]' (or 'waypoints')");
-    if (s.has("center")) s.reject("start", "give either 'start' or 'center' (the same thing), not both");
+    if (!s.has("start") && !s.has("center"))
+      s.error_at("start", "missing 'start: [x, y]' (or 'waypoints')");
+    if (s.has("center"))
+      s.reject("start", "give either 'start' or 'center' (the same thing), not both");
     s.mark_known("center");  // `center` is the same key as `start`, for bumps
-    path.start = s.has("center") ? s.point("center", Vec2{0.5, 0.5}) : s.point("start", Vec2{0.5, 0.5});
+    path.start =
+        s.has("center") ? s.point("center", Vec2{0.5, 0.5}) : s.point("start", Vec2{0.5, 0.5});
     path.velocity = s.point("velocity", Vec2{0, 0});
     s.reject("speed", "'speed' goes with 'waypoints'");
     s.reject("loop", "'loop' goes with 'waypoints'");
@@ -183,9 +188,9 @@ agents::FieldDef read_field(Section s, const ConvexPolygon& domain) {
   if (f.kind == FieldKind::diffusion) {
     Section d = s.section("diffusion");
     agents::DiffusionParams& p = f.diffusion;
-    p.mode = d.choice<agents::DiffusionMode>(
-        "mode", agents::DiffusionMode::fidelity,
-        {{"fidelity", agents::DiffusionMode::fidelity}, {"physical", agents::DiffusionMode::physical}});
+    p.mode = d.choice<agents::DiffusionMode>("mode", agents::DiffusionMode::fidelity,
+                                             {{"fidelity", agents::DiffusionMode::fidelity},
+                                              {"physical", agents::DiffusionMode::physical}});
     p.boundary = d.choice<agents::Boundary>(
         "boundary", agents::Boundary::dirichlet,
         {{"dirichlet", agents::Boundary::dirichlet}, {"no_flux", agents::Boundary::no_flux}});
@@ -278,13 +283,17 @@ net::RadioParams read_radio(Section s) {
   r.jitter_s = s.number("jitter", r.jitter_s, Range::delay());
   const std::string level = s.choice<std::string>(
       "level", "airtime", {{"ideal", "ideal"}, {"airtime", "airtime"}, {"collision", "collision"}});
-  if (level == "collision") s.error_at("level", "level 'collision' is not available yet (use ideal or airtime)");
+  if (level == "collision")
+    s.error_at("level", "level 'collision' is not available yet (use ideal or airtime)");
   r.level = level == "ideal" ? net::RadioLevel::ideal : net::RadioLevel::airtime;
   r.loss = s.number("loss", r.loss, Range{0.0, 1.0, false, true});
   Section e = s.section("energy");
-  r.energy.electronics_j_per_bit = e.number("electronics", r.energy.electronics_j_per_bit, Range::non_negative());
-  r.energy.free_space_j_per_bit_m2 = e.number("free_space", r.energy.free_space_j_per_bit_m2, Range::positive());
-  r.energy.multipath_j_per_bit_m4 = e.number("multipath", r.energy.multipath_j_per_bit_m4, Range::positive());
+  r.energy.electronics_j_per_bit =
+      e.number("electronics", r.energy.electronics_j_per_bit, Range::non_negative());
+  r.energy.free_space_j_per_bit_m2 =
+      e.number("free_space", r.energy.free_space_j_per_bit_m2, Range::positive());
+  r.energy.multipath_j_per_bit_m4 =
+      e.number("multipath", r.energy.multipath_j_per_bit_m4, Range::positive());
   r.energy.idle_power_w = e.number("idle_power", r.energy.idle_power_w, Range::non_negative());
   r.energy.battery_j = e.number("battery", r.energy.battery_j, Range::non_negative());
   e.finish();
@@ -306,11 +315,16 @@ net::RadioParams read_radio(Section s) {
 
 const char* protocol_kind_name(protocols::ProtocolKind kind) {
   switch (kind) {
-    case protocols::ProtocolKind::none: return "none";
-    case protocols::ProtocolKind::radius_doubling: return "radius_doubling";
-    case protocols::ProtocolKind::oracle: return "oracle";
-    case protocols::ProtocolKind::fixed_radius: return "fixed_radius";
-    case protocols::ProtocolKind::gabriel: return "gabriel";
+    case protocols::ProtocolKind::none:
+      return "none";
+    case protocols::ProtocolKind::radius_doubling:
+      return "radius_doubling";
+    case protocols::ProtocolKind::oracle:
+      return "oracle";
+    case protocols::ProtocolKind::fixed_radius:
+      return "fixed_radius";
+    case protocols::ProtocolKind::gabriel:
+      return "gabriel";
   }
   return "?";
 }
@@ -326,14 +340,17 @@ protocols::ProtocolParams read_protocol(Section s) {
                                    {"gabriel", ProtocolKind::gabriel}});
   p.period_s = s.number("period", p.period_s, Range::time());
   p.reply_timeout_s = s.number("reply_timeout", p.reply_timeout_s, Range::time());
-  p.growth = s.choice<protocols::Growth>("growth", p.growth,
-                                         {{"to_2d", protocols::Growth::to_2d}, {"double", protocols::Growth::doubling}});
-  p.criterion = s.choice<protocols::StopCriterion>(
-      "criterion", p.criterion,
-      {{"sensors", protocols::StopCriterion::sensors}, {"vertices", protocols::StopCriterion::vertices}});
+  p.growth = s.choice<protocols::Growth>(
+      "growth", p.growth,
+      {{"to_2d", protocols::Growth::to_2d}, {"double", protocols::Growth::doubling}});
+  p.criterion =
+      s.choice<protocols::StopCriterion>("criterion", p.criterion,
+                                         {{"sensors", protocols::StopCriterion::sensors},
+                                          {"vertices", protocols::StopCriterion::vertices}});
   p.shrink_on_stop = s.boolean("shrink_on_stop", p.shrink_on_stop);
   Section d = s.section("decay");
-  p.decay.patience = static_cast<std::uint32_t>(d.integer("patience", p.decay.patience, 0, 1000000));
+  p.decay.patience =
+      static_cast<std::uint32_t>(d.integer("patience", p.decay.patience, 0, 1000000));
   p.decay.step = d.number("step", p.decay.step, Range::non_negative());
   p.decay.min = d.number("min", p.decay.min, Range::positive());
   d.finish();
@@ -341,12 +358,14 @@ protocols::ProtocolParams read_protocol(Section s) {
   // A knob of another kind is legal (a sweep varies the kind under a fixed set of knobs) but
   // unused: say so, so that nobody believes `growth` changed an oracle run.
   using K = ProtocolKind;
-  const auto applies = [&](std::string_view key, std::initializer_list<K> kinds, const char* which) {
+  const auto applies = [&](std::string_view key, std::initializer_list<K> kinds,
+                           const char* which) {
     if (!s.has(key) || std::find(kinds.begin(), kinds.end(), p.kind) != kinds.end()) return;
     s.warn_at(key, std::string("applies to protocol kind ") + which + ", not " +
                        std::string(protocol_kind_name(p.kind)) + ": it is ignored");
   };
-  applies("period", {K::radius_doubling, K::oracle, K::fixed_radius, K::gabriel}, "radius_doubling, oracle, "
+  applies("period", {K::radius_doubling, K::oracle, K::fixed_radius, K::gabriel},
+          "radius_doubling, oracle, "
           "fixed_radius and gabriel");
   applies("reply_timeout", {K::radius_doubling, K::fixed_radius, K::gabriel},
           "radius_doubling, fixed_radius and gabriel");
@@ -385,12 +404,13 @@ OutputDef read_output(Section s, double duration_s) {
 }  // namespace
 
 LoadResult load_scenario_text(const std::string& text, const std::string& file_name,
-                              const std::vector<std::string>& overrides, std::optional<std::uint64_t> seed,
-                              const LoadOptions& options) {
+                              const std::vector<std::string>& overrides,
+                              std::optional<std::uint64_t> seed, const LoadOptions& options) {
   LoadResult result;
   // The file name reaches summary.json ("source"): JSON text must be UTF-8.
   if (first_invalid_utf8(file_name) != std::string::npos) {
-    result.diagnostics.push_back({shown_text(file_name) + ":1:1", "the file name is not valid UTF-8"});
+    result.diagnostics.push_back(
+        {shown_text(file_name) + ":1:1", "the file name is not valid UTF-8"});
     return result;
   }
   result.diagnostics = check_yaml_text(text, file_name);
@@ -405,21 +425,26 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
     return result;
   }
   if (overrides.empty() && (!root.IsDefined() || root.IsNull())) {
-    result.diagnostics.push_back({file_name + ":1:1", "the scenario is empty (expected a mapping with at least 'duration')"});
+    result.diagnostics.push_back(
+        {file_name + ":1:1",
+         "the scenario is empty (expected a mapping with at least 'duration')"});
     return result;
   }
   if (root.IsDefined() && !root.IsNull() && !root.IsMap()) {
     const YAML::Mark m = root.Mark();
-    result.diagnostics.push_back({file_name + ":" + std::to_string(m.line + 1) + ":" + std::to_string(m.column + 1),
-                                  "the scenario must be a mapping of sections (name, duration, sensors, ...)"});
+    result.diagnostics.push_back(
+        {file_name + ":" + std::to_string(m.line + 1) + ":" + std::to_string(m.column + 1),
+         "the scenario must be a mapping of sections (name, duration, sensors, ...)"});
     return result;
   }
   std::vector<Override> applied;
-  for (const std::string& o : overrides) apply_override(root, o, applied, result.diagnostics);
+  for (const std::string& o : overrides)
+    apply_override(root, o, applied, result.diagnostics);
   if (!result.diagnostics.empty()) return result;
 
   std::vector<std::pair<std::string, std::string>> located;
-  for (const Override& o : applied) located.emplace_back(o.path, o.text);
+  for (const Override& o : applied)
+    located.emplace_back(o.path, o.text);
   ScenarioReader reader(file_name, located);
   Section top(reader, root, "", "");
   ScenarioDef def;
@@ -440,15 +465,18 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
   const std::string stem = std::filesystem::path(file_name).stem().string();
   def.name = top.text("name", sanitized_name(stem));
   if (top.has("name") && !valid_name(def.name))
-    top.error_at("name", "'" + shown_text(def.name) + "' is not a valid name (it names the run directory: " +
-                             name_rule() + ")");
-  def.seed = static_cast<std::uint64_t>(top.integer("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
+    top.error_at("name", "'" + shown_text(def.name) +
+                             "' is not a valid name (it names the run directory: " + name_rule() +
+                             ")");
+  def.seed = static_cast<std::uint64_t>(
+      top.integer("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
   if (seed) {
     def.seed = *seed;
     top.resolve("seed", static_cast<std::int64_t>(*seed));
   }
   const std::size_t errors_before_duration = reader.diagnostics().size();
-  if (!top.has("duration")) top.error_at("duration", "missing required key 'duration' (seconds of simulated time)");
+  if (!top.has("duration"))
+    top.error_at("duration", "missing required key 'duration' (seconds of simulated time)");
   def.duration_s = top.number("duration", 1.0, Range::time());
   // Without a valid duration, snapshot times are not checked against the 1 s fallback.
   const bool duration_ok = reader.diagnostics().size() == errors_before_duration;
@@ -456,27 +484,32 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
   def.world.domain = read_domain(top.section("domain"));
   const std::string base_dir = std::filesystem::path(file_name).parent_path().string();
   SensorLayout layout;
-  def.world.sensors = read_sensors(top.section("sensors"), def.world.domain, def.seed, base_dir, reader, layout,
-                                   def.world.sensor_noise_sigma, caps);
+  def.world.sensors = read_sensors(top.section("sensors"), def.world.domain, def.seed, base_dir,
+                                   reader, layout, def.world.sensor_noise_sigma, caps);
   def.sensor_count = layout.count;
   def.sensor_layout = layout.kind;
   LimitSections at{top.peek("field"),    top.peek("density_scaling"), top.peek("robots"),
                    top.peek("protocol"), top.peek("beacons"),         top.peek("output")};
   def.world.field = read_field(top.section("field"), def.world.domain);
   if (def.world.field.kind == FieldKind::acoustic && def.world.field.min_distance <= 0.0) {
-    // d_min = h/2 by default: half the sensor spacing removes the singularity (docs/decisions/0002-acoustic-field.md).
+    // d_min = h/2 by default: half the sensor spacing removes the singularity
+    // (docs/decisions/0002-acoustic-field.md).
     def.world.field.min_distance = layout.spacing > 0 ? 0.5 * layout.spacing : 0.01;
-    reader.resolved()[nlohmann::json::json_pointer("/field/min_distance")] = def.world.field.min_distance;
+    reader.resolved()[nlohmann::json::json_pointer("/field/min_distance")] =
+        def.world.field.min_distance;
   }
   def.world.scaling = read_scaling(top.section("density_scaling"));
-  def.world.robots = read_robots(top.section("robots"), def.world.domain, def.seed, def.world.motion, caps);
+  def.world.robots =
+      read_robots(top.section("robots"), def.world.domain, def.seed, def.world.motion, caps);
   def.world.radio = read_radio(top.section("radio"));
   def.world.protocol = read_protocol(top.section("protocol"));
   def.world.beacons = read_beacons(top.section("beacons"));
-  read_control(top.section("control"), def.world.field.kind == FieldKind::diffusion, def.world.dispenser, def);
+  read_control(top.section("control"), def.world.field.kind == FieldKind::diffusion,
+               def.world.dispenser, def);
   def.output = read_output(top.section("output"), duration_ok ? def.duration_s : 0.0);
   for (const char* later : {"groups", "faults"})
-    top.reject(later, std::string("section '") + later + "' is not supported by this version of masnet");
+    top.reject(later,
+               std::string("section '") + later + "' is not supported by this version of masnet");
   top.finish();
   // What the numbers imply (work, densities) only means something once they are all valid.
   if (reader.ok()) check_limits(def, layout.count, caps, at);
@@ -493,8 +526,9 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
         return std::pair{line, column};
       return std::pair{std::numeric_limits<int>::max(), 0};
     };
-    std::stable_sort(result.diagnostics.begin(), result.diagnostics.end(),
-                     [&](const Diagnostic& a, const Diagnostic& b) { return position(a) < position(b); });
+    std::stable_sort(
+        result.diagnostics.begin(), result.diagnostics.end(),
+        [&](const Diagnostic& a, const Diagnostic& b) { return position(a) < position(b); });
     return result;
   }
   def.resolved = reader.resolved();
@@ -509,7 +543,8 @@ LoadResult load_scenario(const std::string& path, const std::vector<std::string>
   std::string text, problem;
   if (!read_regular_file(path, kMaxScenarioFileBytes, text, problem)) {
     LoadResult result;
-    result.diagnostics.push_back({path + ":1:1", "cannot read the scenario file (" + problem + ")"});
+    result.diagnostics.push_back(
+        {path + ":1:1", "cannot read the scenario file (" + problem + ")"});
     return result;
   }
   return load_scenario_text(text, path, overrides, seed, options);

@@ -39,7 +39,7 @@ struct ScenarioDef {
   bool baseline = false;
   /// Pollution counts as cleaned when Σ readings falls below this; 0 = 5 % of the peak.
   double clean_threshold = 0.0;
-  nlohmann::json resolved;    ///< every key with its value, defaults included
+  nlohmann::json resolved;  ///< every key with its value, defaults included
 };
 
 /// How much the loader builds.
@@ -62,10 +62,12 @@ struct LoadResult {
   std::set<std::string> known_keys;
 };
 
-/// Loads `path` (a regular file of at most 16 MiB), applying `overrides` ("a.b.c=VALUE", VALUE parsed as YAML) and then the
-/// seed override. Never throws for bad input: problems come back as diagnostics.
+/// Loads `path` (a regular file of at most 16 MiB), applying `overrides` ("a.b.c=VALUE", VALUE
+/// parsed as YAML) and then the seed override. Never throws for bad input: problems come back as
+/// diagnostics.
 LoadResult load_scenario(const std::string& path, const std::vector<std::string>& overrides,
-                         std::optional<std::uint64_t> seed = std::nullopt, const LoadOptions& options = {});
+                         std::optional<std::uint64_t> seed = std::nullopt,
+                         const LoadOptions& options = {});
 
 /// The same from YAML text (tests, fuzzing); `file_name` is used in messages and to resolve
 /// relative paths (sensor files). Bounded for any text: with `allow_huge` off, at most 10^7

@@ -536,18 +536,21 @@ void SweepParser::check_run_count(const YAML::Node& root) {
   bool overflow = false;
   for (const SweepAxis& axis : def_.axes) {
     const std::uint64_t n = axis.points.size();
-    if (n != 0 && runs > std::numeric_limits<std::uint64_t>::max() / n) overflow = true;
-    else runs *= n;
+    if (n != 0 && runs > std::numeric_limits<std::uint64_t>::max() / n)
+      overflow = true;
+    else
+      runs *= n;
     factors += std::to_string(n) + " " + (axis.name == "variant" ? "variants" : axis.name) + " × ";
   }
   if (!overflow && runs <= kMaxSweepRuns) return;
   const YAML::Node vary = child(root, "vary");
   const YAML::Node seeds = child(root, "seeds");
   const YAML::Node at = vary.IsDefined() ? vary : seeds.IsDefined() ? seeds : root;
-  error(at, "vary", "the sweep would have " + (overflow ? std::string("more than 1.8e+19") : std::to_string(runs)) +
-                        " runs (" + factors + std::to_string(def_.seeds.size()) +
-                        " seeds), more than the limit of " + std::to_string(kMaxSweepRuns) +
-                        " (docs/sweeps.md, \"Limits\")");
+  error(at, "vary",
+        "the sweep would have " +
+            (overflow ? std::string("more than 1.8e+19") : std::to_string(runs)) + " runs (" +
+            factors + std::to_string(def_.seeds.size()) + " seeds), more than the limit of " +
+            std::to_string(kMaxSweepRuns) + " (docs/sweeps.md, \"Limits\")");
 }
 
 // Loads the base once alone (its own errors are the sweep's) and once per variant with every
@@ -556,7 +559,8 @@ void SweepParser::probe() {
   // Probes check keys and values, not layouts: the sensors are counted, not built.
   LoadOptions options;
   options.build_sensors = false;
-  const LoadResult alone = load_scenario_text(def_.base_text, def_.base_path, {}, std::nullopt, options);
+  const LoadResult alone =
+      load_scenario_text(def_.base_text, def_.base_path, {}, std::nullopt, options);
   for (const Diagnostic& d : alone.diagnostics)
     reader_.error(d.location, "in the base scenario: " + d.message);
   if (!alone.diagnostics.empty()) return;
@@ -624,7 +628,9 @@ SweepLoad SweepParser::parse(const std::string& text) {
     std::string problem;
     def_.base_path = path.string();
     if (!read_regular_file(def_.base_path, kMaxScenarioFileBytes, def_.base_text, problem)) {
-      error(base, "base", "base: cannot read the scenario '" + shown_text(def_.base_path) + "' (" + problem + ")");
+      error(
+          base, "base",
+          "base: cannot read the scenario '" + shown_text(def_.base_path) + "' (" + problem + ")");
     } else if (auto problems = check_yaml_text(def_.base_text, def_.base_path); !problems.empty()) {
       // Checked before the canonical form below walks it (an alias bomb would).
       for (const Diagnostic& d : problems)
@@ -651,7 +657,8 @@ SweepLoad SweepParser::parse(const std::string& text) {
   }
 
   Section output(reader_, child(root, "output"), "output", "/output");
-  def_.output_dir = output.text("dir", "runs/sweep-" + sanitized_name(fs::path(file_).stem().string()));
+  def_.output_dir =
+      output.text("dir", "runs/sweep-" + sanitized_name(fs::path(file_).stem().string()));
   def_.keep_runs = output.boolean("keep_runs", false);
   output.finish();
 

@@ -326,11 +326,13 @@ int sweep_main(const SweepArgs& args, MpiScope& mpi) {
     options.jobs = static_cast<int>(std::max<std::size_t>(1, run_count));
   if (root && args.jobs > cpus) {
     std::string capped;
-    if (options.jobs < args.jobs) capped = " (capped at the sweep's " + std::to_string(options.jobs) + " runs)";
-    std::fprintf(stderr,
-                 "masnet sweep: warning: --jobs %d is more than the %d CPU%s this process may use; the runs "
-                 "will share them%s\n",
-                 args.jobs, cpus, cpus == 1 ? "" : "s", capped.c_str());
+    if (options.jobs < args.jobs)
+      capped = " (capped at the sweep's " + std::to_string(options.jobs) + " runs)";
+    std::fprintf(
+        stderr,
+        "masnet sweep: warning: --jobs %d is more than the %d CPU%s this process may use; the runs "
+        "will share them%s\n",
+        args.jobs, cpus, cpus == 1 ? "" : "s", capped.c_str());
   }
   options.force = args.force;
   options.progress = root && !args.quiet && ::isatty(STDERR_FILENO) == 1;

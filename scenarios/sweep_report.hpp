@@ -50,7 +50,6 @@ struct SweepReportInput {
   std::filesystem::path chartjs;
 };
 
-
 /// A metric the report compares: its dotted summary key and a title with units.
 struct SweepReportMetric {
   const char* key;

@@ -4,8 +4,8 @@
 #include <map>
 #include <stdexcept>
 
-#include <boost/math/distributions/students_t.hpp>
 #include <sqlite3.h>
+#include <boost/math/distributions/students_t.hpp>
 
 #include "scenarios/sweep.hpp"
 
@@ -22,12 +22,14 @@ MeanCi mean_ci95(const std::vector<double>& values) {
   r.n = values.size();
   if (r.n == 0) return r;
   double sum = 0;
-  for (double v : values) sum += v;
+  for (double v : values)
+    sum += v;
   const auto n = static_cast<double>(r.n);
   r.mean = sum / n;
   if (r.n < 2) return r;
   double squares = 0;
-  for (double v : values) squares += (v - r.mean) * (v - r.mean);
+  for (double v : values)
+    squares += (v - r.mean) * (v - r.mean);
   r.sd = std::sqrt(squares / (n - 1));
   r.half_width = student_t_975(r.n - 1) * r.sd / std::sqrt(n);
   return r;
@@ -43,7 +45,8 @@ std::string configuration_label(const std::string& run_label) {
   const std::size_t at = run_label.rfind("seed=");
   if (at == std::string::npos) return run_label;
   std::string label = run_label.substr(0, at);
-  while (!label.empty() && label.back() == ' ') label.pop_back();
+  while (!label.empty() && label.back() == ' ')
+    label.pop_back();
   return label.empty() ? "(base)" : label;
 }
 
@@ -63,7 +66,8 @@ struct Prepared {
   sqlite3_stmt* stmt = nullptr;
   Prepared(sqlite3* db, const char* sql) {
     if (sqlite3_prepare_v2(db, sql, -1, &stmt, nullptr) != SQLITE_OK)
-      throw std::runtime_error(std::string("results.sqlite: ") + sqlite3_errmsg(db) + " in: " + sql);
+      throw std::runtime_error(std::string("results.sqlite: ") + sqlite3_errmsg(db) +
+                               " in: " + sql);
   }
   ~Prepared() { sqlite3_finalize(stmt); }
   Prepared(const Prepared&) = delete;
@@ -102,8 +106,9 @@ void write_statistics_table(sqlite3* db, const std::vector<RunSpec>& runs) {
         it->second.parameters = run.parameters.dump();
       }
       sqlite3_bind_text(status.stmt, 1, run.id.c_str(), -1, SQLITE_TRANSIENT);
-      const bool ok = sqlite3_step(status.stmt) == SQLITE_ROW &&
-                      std::string(reinterpret_cast<const char*>(sqlite3_column_text(status.stmt, 0))) == "ok";
+      const bool ok =
+          sqlite3_step(status.stmt) == SQLITE_ROW &&
+          std::string(reinterpret_cast<const char*>(sqlite3_column_text(status.stmt, 0))) == "ok";
       sqlite3_reset(status.stmt);
       if (!ok) continue;
       std::map<std::string, double> values;
@@ -114,15 +119,17 @@ void write_statistics_table(sqlite3* db, const std::vector<RunSpec>& runs) {
               sqlite3_column_double(metrics.stmt, 1);
       sqlite3_reset(metrics.stmt);
       add_derived_metrics(values);
-      for (const auto& [key, value] : values) it->second.values[key].push_back(value);
+      for (const auto& [key, value] : values)
+        it->second.values[key].push_back(value);
     }
   }
   exec(db, "BEGIN");
   try {
     exec(db, "DELETE FROM statistics");
-    Prepared insert(db,
-                    "INSERT INTO statistics (configuration, parameters, metric, n, mean, sd, ci95_low, "
-                    "ci95_high) VALUES (?,?,?,?,?,?,?,?)");
+    Prepared insert(
+        db,
+        "INSERT INTO statistics (configuration, parameters, metric, n, mean, sd, ci95_low, "
+        "ci95_high) VALUES (?,?,?,?,?,?,?,?)");
     for (const std::string& label : order) {
       const Configuration& c = configurations.at(label);
       for (const auto& [metric, values] : c.values) {

@@ -25,10 +25,10 @@ void set_assertion_mode(AssertionMode mode);
 }  // namespace masnet::sim
 
 #if defined(MASNET_ASSERTIONS) && MASNET_ASSERTIONS
-#define MASNET_ASSERT(cond, message)                                               \
-  do {                                                                             \
-    if (!(cond)) [[unlikely]]                                                      \
-      ::masnet::sim::assertion_failed(#cond, (message), __FILE__, __LINE__);        \
+#define MASNET_ASSERT(cond, message)                                         \
+  do {                                                                       \
+    if (!(cond)) [[unlikely]]                                                \
+      ::masnet::sim::assertion_failed(#cond, (message), __FILE__, __LINE__); \
   } while (false)
 #else
 #define MASNET_ASSERT(cond, message) \

@@ -60,7 +60,8 @@ class EventQueue {
     if (head_ == buckets_[0].size()) [[unlikely]] {
       const std::vector<Key>& bucket = buckets_[first_bucket()];
       std::uint64_t m = bucket[0].time;
-      for (const Key& k : bucket) m = std::min(m, k.time);
+      for (const Key& k : bucket)
+        m = std::min(m, k.time);
       return static_cast<std::int64_t>(m);
     }
     return static_cast<std::int64_t>(buckets_[0][head_].time);
@@ -101,7 +102,8 @@ class EventQueue {
   }
   std::size_t first_bucket() const {
     std::size_t i = 1;
-    while (buckets_[i].empty()) ++i;
+    while (buckets_[i].empty())
+      ++i;
     return i;
   }
   // Bucket 0 is used up: spread the first non-empty bucket around its minimum, which
@@ -111,9 +113,11 @@ class EventQueue {
     head_ = 0;
     std::vector<Key>& bucket = buckets_[first_bucket()];
     std::uint64_t m = bucket[0].time;
-    for (const Key& k : bucket) m = std::min(m, k.time);
+    for (const Key& k : bucket)
+      m = std::min(m, k.time);
     last_ = m;
-    for (const Key& k : bucket) place(k);
+    for (const Key& k : bucket)
+      place(k);
     bucket.clear();
     // Keys reaching bucket 0 together may come in any order; keys pushed later at this time
     // have larger sequence numbers, so one sort here keeps bucket 0 in scheduling order.

@@ -17,7 +17,9 @@ inline constexpr std::uint64_t mix_word(std::uint64_t state, std::uint64_t word)
 }
 
 /// The bits of a double, so that digests see exactly what was computed.
-inline std::uint64_t bits_of(double x) { return std::bit_cast<std::uint64_t>(x); }
+inline std::uint64_t bits_of(double x) {
+  return std::bit_cast<std::uint64_t>(x);
+}
 
 class Fingerprint {
  public:

@@ -13,7 +13,8 @@ namespace masnet::sim {
 /// Names a use of randomness ("radio.loss", "robot.phase"); a compile-time FNV-1a hash.
 inline constexpr std::uint64_t purpose(std::string_view name) {
   std::uint64_t h = 0xCBF29CE484222325ULL;
-  for (char c : name) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001B3ULL;
+  for (char c : name)
+    h = (h ^ static_cast<unsigned char>(c)) * 0x100000001B3ULL;
   return h;
 }
 
@@ -48,7 +49,8 @@ class RandomStream {
     return keyed(seed, std::uint64_t{index(node)}, purpose_hash);
   }
   /// The same, for a caller-chosen node key (e.g. role and index, stable when nodes are added).
-  static RandomStream keyed(std::uint64_t seed, std::uint64_t node_key, std::uint64_t purpose_hash) {
+  static RandomStream keyed(std::uint64_t seed, std::uint64_t node_key,
+                            std::uint64_t purpose_hash) {
     return RandomStream(keyed_u64(seed, node_key, purpose_hash));
   }
   /// A stream from one raw 64-bit seed (splitmix64 expansion, the generator authors' advice).
@@ -80,9 +82,7 @@ class RandomStream {
   bool bernoulli(double p) { return uniform01() < p; }
 
  private:
-  static constexpr std::uint64_t rotl(std::uint64_t x, int k) {
-    return (x << k) | (x >> (64 - k));
-  }
+  static constexpr std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
   std::uint64_t s_[4];
 };
 

@@ -65,6 +65,8 @@ std::uint64_t Simulator::run_until(Time limit) {
   return ran;
 }
 
-std::uint64_t Simulator::run() { return run_loop<false>(0); }
+std::uint64_t Simulator::run() {
+  return run_loop<false>(0);
+}
 
 }  // namespace masnet::sim

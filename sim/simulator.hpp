@@ -59,9 +59,10 @@ class Simulator {
   /// Calls `hook(now, events_run)` after every `every_events`-th event run (counted across
   /// run/run_until calls), e.g. to redraw a progress line while a long chunk runs. A generic
   /// "every N events" hook: the kernel reads no clock. An empty hook (or 0) removes it. The
-  /// cost per event is one decrement of a counter in a register. A hook that only observes (reads a clock,
-  /// draws) leaves the event stream and its fingerprint unchanged.
-  void set_progress_hook(std::uint64_t every_events, std::function<void(Time now, std::uint64_t events)> hook);
+  /// cost per event is one decrement of a counter in a register. A hook that only observes (reads a
+  /// clock, draws) leaves the event stream and its fingerprint unchanged.
+  void set_progress_hook(std::uint64_t every_events,
+                         std::function<void(Time now, std::uint64_t events)> hook);
 
   /// Pre-sizes the queue for `n` simultaneously pending events.
   void reserve(std::size_t n) { queue_.reserve(n); }

@@ -27,12 +27,22 @@ inline constexpr Time kTimeZero{Duration{0}};
 inline constexpr Time kTimeMax{Duration{std::numeric_limits<std::int64_t>::max()}};
 
 /// Seconds (double) to the nearest nanosecond; the one place where rounding happens.
-inline Duration seconds(double s) { return Duration{std::llround(s * 1e9)}; }
+inline Duration seconds(double s) {
+  return Duration{std::llround(s * 1e9)};
+}
 /// The time `s` seconds after the start of the run, rounded to the nanosecond.
-inline Time time_at(double s) { return kTimeZero + seconds(s); }
+inline Time time_at(double s) {
+  return kTimeZero + seconds(s);
+}
 
-inline constexpr double to_seconds(Duration d) { return static_cast<double>(d.count()) * 1e-9; }
-inline constexpr double to_seconds(Time t) { return to_seconds(t.time_since_epoch()); }
-inline constexpr std::int64_t to_ns(Time t) { return t.time_since_epoch().count(); }
+inline constexpr double to_seconds(Duration d) {
+  return static_cast<double>(d.count()) * 1e-9;
+}
+inline constexpr double to_seconds(Time t) {
+  return to_seconds(t.time_since_epoch());
+}
+inline constexpr std::int64_t to_ns(Time t) {
+  return t.time_since_epoch().count();
+}
 
 }  // namespace masnet::sim

@@ -25,12 +25,14 @@ Eigen::Vector2d by_matrix_exponential(double k, double k_v, double x0, double v0
 
 }  // namespace
 
-TEST_CASE("the closed-form robot motion equals the matrix exponential of the linear ODE", "[agents]") {
+TEST_CASE("the closed-form robot motion equals the matrix exponential of the linear ODE",
+          "[agents]") {
   struct Gains {
     double k, k_v;
   };
   // Paper gains (underdamped), overdamped, critical, pure friction, free flight.
-  const Gains cases[] = {{3.0, 1.0}, {1.0, 5.0}, {1.0, 2.0}, {0.0, 1.0}, {0.0, 0.0}, {4.0, 0.1}, {2.5, 3.1622}};
+  const Gains cases[] = {{3.0, 1.0}, {1.0, 5.0}, {1.0, 2.0},   {0.0, 1.0},
+                         {0.0, 0.0}, {4.0, 0.1}, {2.5, 3.1622}};
   for (const Gains& g : cases)
     for (double x0 : {-0.7, 0.0, 0.3})
       for (double v0 : {-0.4, 0.0, 0.25})
@@ -50,8 +52,10 @@ TEST_CASE("a motion segment moves each axis toward the target by the closed form
   const MotionSegment segment(p, 1.5, start, target);
   for (double dt : {0.0, 0.1, 1.0, 4.0}) {
     const MotionState s = segment.state_at(1.5 + dt);
-    const Eigen::Vector2d x = by_matrix_exponential(p.k, p.k_v, start.position.x() - target.x(), start.velocity.x(), dt);
-    const Eigen::Vector2d y = by_matrix_exponential(p.k, p.k_v, start.position.y() - target.y(), start.velocity.y(), dt);
+    const Eigen::Vector2d x =
+        by_matrix_exponential(p.k, p.k_v, start.position.x() - target.x(), start.velocity.x(), dt);
+    const Eigen::Vector2d y =
+        by_matrix_exponential(p.k, p.k_v, start.position.y() - target.y(), start.velocity.y(), dt);
     CHECK(s.position.x() == Approx(target.x() + x[0]).margin(1e-9));
     CHECK(s.position.y() == Approx(target.y() + y[0]).margin(1e-9));
     CHECK(s.velocity.x() == Approx(x[1]).margin(1e-9));
@@ -64,15 +68,18 @@ TEST_CASE("a motion segment moves each axis toward the target by the closed form
 TEST_CASE("the speed bound of a segment holds along the whole motion", "[agents]") {
   MotionParams p;
   const MotionSegment segment(p, 0.0, MotionState{Vec2{0.0, 0.0}, Vec2{0.5, 0.2}}, Vec2{1.0, 1.0});
-  for (double t = 0.0; t < 10.0; t += 0.01) CHECK(segment.state_at(t).velocity.norm() <= segment.speed_bound() + 1e-12);
+  for (double t = 0.0; t < 10.0; t += 0.01)
+    CHECK(segment.state_at(t).velocity.norm() <= segment.speed_bound() + 1e-12);
 }
 
-TEST_CASE("a speed-limited robot never exceeds the limit and still reaches its target", "[agents]") {
+TEST_CASE("a speed-limited robot never exceeds the limit and still reaches its target",
+          "[agents]") {
   MotionParams p;
   p.max_speed = 0.05;
   const Vec2 target{0.9, 0.9};
   const MotionSegment segment(p, 0.0, MotionState{Vec2{0.1, 0.1}, Vec2{0, 0}}, target);
-  for (double t = 0.0; t < 5.0; t += 0.013) CHECK(segment.state_at(t).velocity.norm() <= p.max_speed * (1 + 1e-12));
+  for (double t = 0.0; t < 5.0; t += 0.013)
+    CHECK(segment.state_at(t).velocity.norm() <= p.max_speed * (1 + 1e-12));
   // 1.13 units at 0.05 units/s takes at least 22.6 s.
   CHECK((segment.state_at(20.0).position - target).norm() > 0.05);
   CHECK((segment.state_at(200.0).position - target).norm() < 1e-6);

@@ -20,10 +20,12 @@ WorldDef layout(std::uint64_t seed, protocols::StopCriterion criterion, double l
   def.seed = seed;
   def.domain = protocols::rectangle(0, 0, 1, 1);
   for (int j = 0; j < 20; ++j)
-    for (int i = 0; i < 20; ++i) def.sensors.push_back({Vec2{(i + 0.5) / 20, (j + 0.5) / 20}, 1.0 / 400});
+    for (int i = 0; i < 20; ++i)
+      def.sensors.push_back({Vec2{(i + 0.5) / 20, (j + 0.5) / 20}, 1.0 / 400});
   sim::RandomStream rng(seed);
   const int robots = 5 + static_cast<int>(rng.below(11));
-  for (int r = 0; r < robots; ++r) def.robots.push_back(Vec2{rng.uniform(0.02, 0.98), rng.uniform(0.02, 0.98)});
+  for (int r = 0; r < robots; ++r)
+    def.robots.push_back(Vec2{rng.uniform(0.02, 0.98), rng.uniform(0.02, 0.98)});
   def.motion.k = 0.0;
   def.field.kind = agents::FieldKind::uniform;
   def.radio.max_range = 1.5;
@@ -56,7 +58,9 @@ struct Judge : agents::WorldObserver {
   void on_update(std::size_t robot, const protocols::UpdateRecord& r) override {
     ++updates;
     correct += world->oracle_cell(robot).neighbours == r.neighbours ? 1 : 0;
-    correct_heard += protocols::heard_neighbours(r.position, r.heard, world->def().domain) == r.neighbours ? 1 : 0;
+    correct_heard +=
+        protocols::heard_neighbours(r.position, r.heard, world->def().domain) == r.neighbours ? 1
+                                                                                              : 0;
     truncated += r.truncated ? 1 : 0;
     max_rounds = std::max(max_rounds, r.rounds);
   }
@@ -90,8 +94,10 @@ TEST_CASE("with the vertex criterion and no loss every update finds exactly the 
   CHECK(updates > 24 * 5 * 15);
 }
 
-TEST_CASE("with the vertex criterion and no loss moving robots build exactly the cell of the positions they heard",
-          "[agents]") {
+TEST_CASE(
+    "with the vertex criterion and no loss moving robots build exactly the cell of the positions "
+    "they heard",
+    "[agents]") {
   // Against the true positions at the end of the update a few cells differ (a neighbour moved
   // after its reply); against the positions the replies carried, none may.
   std::uint64_t updates = 0, correct = 0, correct_heard = 0;
@@ -104,14 +110,16 @@ TEST_CASE("with the vertex criterion and no loss moving robots build exactly the
     correct += j.correct;
     correct_heard += j.correct_heard;
   }
-  WARN("moving robots: " << updates - correct << " of " << updates
-                         << " updates differ from the true cell at their end, none from the cell heard");
+  WARN("moving robots: "
+       << updates - correct << " of " << updates
+       << " updates differ from the true cell at their end, none from the cell heard");
   CHECK(updates > 24 * 5 * 25);
   CHECK(correct_heard == updates);
   CHECK(correct < updates);  // the two figures measure different things
 }
 
-TEST_CASE("the paper's sensor criterion misses a few neighbours, measured against the oracle", "[agents]") {
+TEST_CASE("the paper's sensor criterion misses a few neighbours, measured against the oracle",
+          "[agents]") {
   std::uint64_t updates = 0, correct = 0;
   for (std::uint64_t seed = 1; seed <= 24; ++seed) {
     const Judge j = run(layout(seed, protocols::StopCriterion::sensors), 0.2);
@@ -119,8 +127,8 @@ TEST_CASE("the paper's sensor criterion misses a few neighbours, measured agains
     correct += j.correct;
   }
   const double rate = static_cast<double>(correct) / static_cast<double>(updates);
-  WARN("sensor criterion: " << correct << " of " << updates << " updates had the true neighbour set ("
-                            << rate * 100 << " %)");
+  WARN("sensor criterion: " << correct << " of " << updates
+                            << " updates had the true neighbour set (" << rate * 100 << " %)");
   CHECK(updates > 24 * 5 * 15);
   // Measured at 93.9 %: the criterion stops once no farther sensor answers, so a neighbour whose
   // bisector crosses the cell between sensors goes unseen. It must miss some (else it would be
@@ -142,14 +150,16 @@ TEST_CASE("loss lowers cell correctness but every update still terminates", "[ag
     CHECK(lossy.updates >= clean.updates * 8 / 10);
     CHECK(lossy.max_rounds <= 12);
   }
-  const double clean_rate = static_cast<double>(lossless_correct) / static_cast<double>(lossless_updates);
+  const double clean_rate =
+      static_cast<double>(lossless_correct) / static_cast<double>(lossless_updates);
   const double lossy_rate = static_cast<double>(lossy_correct) / static_cast<double>(lossy_updates);
   WARN("correctness without loss " << clean_rate << ", with loss 0.4: " << lossy_rate);
   CHECK(clean_rate == 1.0);
   CHECK(lossy_rate < clean_rate);
 }
 
-TEST_CASE("the same world and seed give the same fingerprint and another seed a different one", "[agents]") {
+TEST_CASE("the same world and seed give the same fingerprint and another seed a different one",
+          "[agents]") {
   auto fingerprint = [](std::uint64_t seed) {
     WorldDef def = layout(3, protocols::StopCriterion::sensors, 0.1);
     def.seed = seed;
@@ -172,24 +182,29 @@ TEST_CASE("the oracle's scanline pass selects exactly the sensors an exact point
   // field with targets on sensors (clamped readings) and scalings other than the identity.
   // Layout 6 puts robots at dyadic points whose bisectors (x, y = 0.3125, 0.5625, 0.8125) pass
   // exactly through sensor columns and rows: those sensors lie on the boundary of two cells.
-  const protocols::ScalingKind scalings[] = {protocols::ScalingKind::identity, protocols::ScalingKind::saturate,
-                                             protocols::ScalingKind::power, protocols::ScalingKind::log1p};
+  const protocols::ScalingKind scalings[] = {
+      protocols::ScalingKind::identity, protocols::ScalingKind::saturate,
+      protocols::ScalingKind::power, protocols::ScalingKind::log1p};
   for (int layout = 0; layout < 7; ++layout) {
     WorldDef def;
     def.seed = 5;
     def.domain = protocols::rectangle(0, 0, 1, 1);
     const int side = 40;
     for (int j = 0; j < side; ++j)
-      for (int i = 0; i < side; ++i) def.sensors.push_back({Vec2{(i + 0.5) / side, (j + 0.5) / side}, 1.0 / (side * side)});
+      for (int i = 0; i < side; ++i)
+        def.sensors.push_back({Vec2{(i + 0.5) / side, (j + 0.5) / side}, 1.0 / (side * side)});
     sim::RandomStream rng(static_cast<std::uint64_t>(layout));
     if (layout == 6) {
       for (const double y : {0.1875, 0.4375, 0.6875, 0.9375})
-        for (const double x : {0.1875, 0.4375, 0.6875, 0.9375}) def.robots.push_back(Vec2{x, y});
+        for (const double x : {0.1875, 0.4375, 0.6875, 0.9375})
+          def.robots.push_back(Vec2{x, y});
     } else if (layout % 2 == 0) {
       for (int j = 0; j < 4; ++j)
-        for (int i = 0; i < 4; ++i) def.robots.push_back(Vec2{(i + 0.5) / 4, (j + 0.5) / 4});
+        for (int i = 0; i < 4; ++i)
+          def.robots.push_back(Vec2{(i + 0.5) / 4, (j + 0.5) / 4});
     } else {
-      for (int r = 0; r < 25; ++r) def.robots.push_back(Vec2{rng.uniform01(), rng.uniform01()});
+      for (int r = 0; r < 25; ++r)
+        def.robots.push_back(Vec2{rng.uniform01(), rng.uniform01()});
     }
     protocols::DensityScaling scaling;
     if (layout < 2 || layout == 6) {
@@ -238,12 +253,15 @@ TEST_CASE("adding a sensor or a robot changes no other node's random draws", "[a
   // of every existing robot starts at the same instant whatever is added.
   auto first_updates = [](int extra_sensors, int extra_robots) {
     WorldDef def = layout(4, protocols::StopCriterion::sensors);
-    for (int k = 0; k < extra_sensors; ++k) def.sensors.push_back({Vec2{0.013 * (k + 1), 0.37}, 1.0 / 400});
-    for (int k = 0; k < extra_robots; ++k) def.robots.push_back(Vec2{0.9, 0.11 * (k + 1)});
+    for (int k = 0; k < extra_sensors; ++k)
+      def.sensors.push_back({Vec2{0.013 * (k + 1), 0.37}, 1.0 / 400});
+    for (int k = 0; k < extra_robots; ++k)
+      def.robots.push_back(Vec2{0.9, 0.11 * (k + 1)});
     struct FirstStart : agents::WorldObserver {
       std::vector<double> started;
       void on_update(std::size_t robot, const protocols::UpdateRecord& r) override {
-        if (robot < started.size() && started[robot] < 0) started[robot] = sim::to_seconds(r.started);
+        if (robot < started.size() && started[robot] < 0)
+          started[robot] = sim::to_seconds(r.started);
       }
     } observer;
     observer.started.assign(def.robots.size() - static_cast<std::size_t>(extra_robots), -1.0);
@@ -255,37 +273,46 @@ TEST_CASE("adding a sensor or a robot changes no other node's random draws", "[a
     return observer.started;
   };
   const std::vector<double> base = first_updates(0, 0);
-  for (double t : base) CHECK(t > 0.0);
+  for (double t : base)
+    CHECK(t > 0.0);
   CHECK(first_updates(3, 0) == base);
   CHECK(first_updates(0, 2) == base);
 }
 
-TEST_CASE("the oracle cell does not depend on the first search radius and equals the all-cells construction",
-          "[agents]") {
+TEST_CASE(
+    "the oracle cell does not depend on the first search radius and equals the all-cells "
+    "construction",
+    "[agents]") {
   // Robots above the radio's linear-scan limit (its mobile grid answers the candidate search),
   // random and clustered; guesses from far too small to far too large.
   for (int layout = 0; layout < 6; ++layout) {
-    WorldDef def = ::layout(100 + static_cast<std::uint64_t>(layout), protocols::StopCriterion::vertices);
+    WorldDef def =
+        ::layout(100 + static_cast<std::uint64_t>(layout), protocols::StopCriterion::vertices);
     sim::RandomStream rng(static_cast<std::uint64_t>(layout));
     def.robots.clear();
     const int robots = 40 + 30 * layout;
     for (int r = 0; r < robots; ++r) {
-      const double spread = layout % 2 == 0 ? 1.0 : 0.3;  // odd layouts: a dense cluster and a sparse rest
+      const double spread =
+          layout % 2 == 0 ? 1.0 : 0.3;  // odd layouts: a dense cluster and a sparse rest
       def.robots.push_back(r % 3 == 0 ? Vec2{rng.uniform01(), rng.uniform01()}
-                                      : Vec2{0.5 + spread * (rng.uniform01() - 0.5), 0.5 + spread * (rng.uniform01() - 0.5)});
+                                      : Vec2{0.5 + spread * (rng.uniform01() - 0.5),
+                                             0.5 + spread * (rng.uniform01() - 0.5)});
     }
     sim::Simulator simulator;
     World world(simulator, def);
     const std::vector<protocols::Cell> all = protocols::voronoi_cells(def.robots, def.domain);
     for (std::size_t r = 0; r < world.robot_count(); ++r) {
       std::vector<sim::NodeId> expected;
-      for (std::uint32_t i : all[r].neighbours) expected.push_back(world.robot_node(i));
+      for (std::uint32_t i : all[r].neighbours)
+        expected.push_back(world.robot_node(i));
       std::sort(expected.begin(), expected.end());
       INFO("layout " << layout << " robot " << r);
       const protocols::RobotCell by_default = world.oracle_cell(r);
       CHECK(by_default.neighbours == expected);
-      CHECK(protocols::area(by_default.polygon) == Approx(protocols::area(all[r].polygon)).epsilon(1e-9));
-      for (const double guess : {1e-4, 0.05, 0.3, 3.0}) CHECK(world.oracle_cell(r, guess).neighbours == expected);
+      CHECK(protocols::area(by_default.polygon) ==
+            Approx(protocols::area(all[r].polygon)).epsilon(1e-9));
+      for (const double guess : {1e-4, 0.05, 0.3, 3.0})
+        CHECK(world.oracle_cell(r, guess).neighbours == expected);
     }
   }
 }

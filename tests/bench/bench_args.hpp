@@ -36,7 +36,9 @@ inline double unit_open_closed(std::uint64_t bits) {
 }
 
 /// FNV-1a over 64-bit words: the peers' checksum.
-inline std::uint64_t fnv_word(std::uint64_t h, std::uint64_t w) { return (h ^ w) * 1099511628211ULL; }
+inline std::uint64_t fnv_word(std::uint64_t h, std::uint64_t w) {
+  return (h ^ w) * 1099511628211ULL;
+}
 inline constexpr std::uint64_t kFnvBasis = 1469598103934665603ULL;
 
 }  // namespace masnet::bench

@@ -26,11 +26,13 @@ struct Counter : net::RadioListener {
 
 double mean_degree(const std::vector<Vec2>& pos, double r) {
   std::vector<sim::NodeId> ids;
-  for (std::uint32_t i = 0; i < pos.size(); ++i) ids.push_back(sim::node_id(i));
+  for (std::uint32_t i = 0; i < pos.size(); ++i)
+    ids.push_back(sim::node_id(i));
   net::SpatialGrid grid;
   grid.build(pos, ids, r);
   std::uint64_t edges = 0;
-  for (const Vec2& p : pos) grid.for_each_within(p, r, [&](sim::NodeId, const Vec2&, double) { ++edges; });
+  for (const Vec2& p : pos)
+    grid.for_each_within(p, r, [&](sim::NodeId, const Vec2&, double) { ++edges; });
   return static_cast<double>(edges - pos.size()) / static_cast<double>(pos.size());
 }
 
@@ -54,7 +56,8 @@ int main(int argc, char** argv) {
     p = Vec2{x, y};
   }
   for (auto& ph : phase)
-    ph = static_cast<std::int64_t>(bench::unit_open_closed(rng.next_u64()) * static_cast<double>(period_ns));
+    ph = static_cast<std::int64_t>(bench::unit_open_closed(rng.next_u64()) *
+                                   static_cast<double>(period_ns));
   double r = std::sqrt(degree / (M_PI * (n - 1)));
   for (int it = 0; it < 4; ++it) {
     const double m = mean_degree(pos, r);
@@ -73,7 +76,8 @@ int main(int argc, char** argv) {
   counter.count.assign(n, 0);
   counter.sender_sum.assign(n, 0);
   radio.set_listener(&counter);
-  for (std::uint32_t i = 0; i < n; ++i) radio.add_static_node(sim::node_id(i), pos[i], i);
+  for (std::uint32_t i = 0; i < n; ++i)
+    radio.add_static_node(sim::node_id(i), pos[i], i);
 
   struct Sender {
     sim::Simulator* simulator;
@@ -104,12 +108,14 @@ int main(int argc, char** argv) {
     checksum = bench::fnv_word(checksum, counter.sender_sum[i]);
   }
   double energy = 0;
-  for (std::uint32_t i = 0; i < n; ++i) energy += radio.energy_j(sim::node_id(i));
+  for (std::uint32_t i = 0; i < n; ++i)
+    energy += radio.energy_j(sim::node_id(i));
   std::printf(
       "RESULT name=bcast/masnet-radio/n=%u metric=%.0f unit=deliveries/s deliveries=%llu tx=%llu "
       "sec=%.3f mean_degree=%.2f range=%.4f setup_s=%.3f energy_j=%.6f checksum=%016llx\n",
       n, static_cast<double>(deliveries) / sec, static_cast<unsigned long long>(deliveries),
-      static_cast<unsigned long long>(sender.sent), sec, static_cast<double>(deliveries) / n / rounds, r,
-      setup, energy, static_cast<unsigned long long>(checksum));
+      static_cast<unsigned long long>(sender.sent), sec,
+      static_cast<double>(deliveries) / n / rounds, r, setup, energy,
+      static_cast<unsigned long long>(checksum));
   return 0;
 }

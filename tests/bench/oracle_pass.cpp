@@ -18,9 +18,11 @@ agents::WorldDef layout(int side, int robots, agents::FieldKind field) {
   def.domain = protocols::rectangle(0, 0, 1, 1);
   const double area = 1.0 / (static_cast<double>(side) * side);
   for (int j = 0; j < side; ++j)
-    for (int i = 0; i < side; ++i) def.sensors.push_back({Vec2{(i + 0.5) / side, (j + 0.5) / side}, area});
+    for (int i = 0; i < side; ++i)
+      def.sensors.push_back({Vec2{(i + 0.5) / side, (j + 0.5) / side}, area});
   sim::RandomStream rng(1);
-  for (int r = 0; r < robots; ++r) def.robots.push_back(Vec2{rng.uniform01(), rng.uniform01()});
+  for (int r = 0; r < robots; ++r)
+    def.robots.push_back(Vec2{rng.uniform01(), rng.uniform01()});
   def.field.kind = field;
   if (field == agents::FieldKind::acoustic) {
     def.field.targets = {agents::PathDef{Vec2{0.3, 0.3}, Vec2{0, 0}, {}, 0, false},
@@ -37,7 +39,8 @@ void sensing_pass(benchmark::State& state, agents::FieldKind field) {
   sim::Simulator simulator;
   agents::World world(simulator, layout(side, robots, field));
   std::vector<protocols::ConvexPolygon> cells;
-  for (int r = 0; r < robots; ++r) cells.push_back(world.oracle_cell(static_cast<std::size_t>(r)).polygon);
+  for (int r = 0; r < robots; ++r)
+    cells.push_back(world.oracle_cell(static_cast<std::size_t>(r)).polygon);
   double sink = 0;
   for (auto _ : state) {
     for (const auto& cell : cells) {
@@ -48,8 +51,9 @@ void sensing_pass(benchmark::State& state, agents::FieldKind field) {
   }
   benchmark::DoNotOptimize(sink);
   // kIsIterationInvariantRate | kInvert: seconds per sensor; shown in ns by the 1e9 factor below.
-  state.counters["ns_per_sensor"] = benchmark::Counter(static_cast<double>(side) * side / 1e9,
-                                                       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["ns_per_sensor"] = benchmark::Counter(
+      static_cast<double>(side) * side / 1e9,
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 // Cells and sensing together: what one round of oracle updates of every robot costs.
@@ -68,16 +72,21 @@ void full_oracle_round(benchmark::State& state) {
   }
   benchmark::DoNotOptimize(sink);
   // kIsIterationInvariantRate | kInvert: seconds per sensor; shown in ns by the 1e9 factor below.
-  state.counters["ns_per_sensor"] = benchmark::Counter(static_cast<double>(side) * side / 1e9,
-                                                       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["ns_per_sensor"] = benchmark::Counter(
+      static_cast<double>(side) * side / 1e9,
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 }  // namespace
 
 BENCHMARK_CAPTURE(sensing_pass, uniform, agents::FieldKind::uniform)
-    ->Args({100, 100})->Args({316, 1000})->Args({1000, 10000})->Unit(benchmark::kMillisecond);
+    ->Args({100, 100})
+    ->Args({316, 1000})
+    ->Args({1000, 10000})
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(sensing_pass, acoustic, agents::FieldKind::acoustic)
-    ->Args({1000, 10000})->Unit(benchmark::kMillisecond);
+    ->Args({1000, 10000})
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(full_oracle_round)->Args({100, 100})->Args({1000, 10000})->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

@@ -24,7 +24,8 @@ struct Phold {
   double t0 = 0, t1 = 0;
 
   std::int64_t delay_ticks() {
-    const auto d = static_cast<std::int64_t>(-std::log(bench::unit_open_closed(rng.next_u64())) * 1e9);
+    const auto d =
+        static_cast<std::int64_t>(-std::log(bench::unit_open_closed(rng.next_u64())) * 1e9);
     return d < 1 ? 1 : d;
   }
   std::uint32_t random_lp() {
@@ -62,7 +63,8 @@ int main(int argc, char** argv) {
       p.sim.after(sim::Duration{p.delay_ticks()}, [&p, lp] { p.handle(lp); });
   p.sim.run();
   std::uint64_t checksum = bench::kFnvBasis;
-  for (std::uint64_t c : p.per_lp) checksum = bench::fnv_word(checksum, c);
+  for (std::uint64_t c : p.per_lp)
+    checksum = bench::fnv_word(checksum, c);
   const double sec = p.t1 - p.t0;
   std::printf(
       "RESULT name=phold/masnet/pop=%llu metric=%.0f unit=events/s ns_per_event=%.1f sec=%.3f "

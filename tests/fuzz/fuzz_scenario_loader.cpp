@@ -123,8 +123,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.build_sensors = false;
   options.allow_huge = false;
   try {
-    result = masnet::scenarios::load_scenario_text(input.yaml_text, kFileName, input.overrides, std::nullopt,
-                                                   options);
+    result = masnet::scenarios::load_scenario_text(input.yaml_text, kFileName, input.overrides,
+                                                   std::nullopt, options);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "  %s\n", e.what());
     fail("load_scenario_text threw (it promises diagnostics instead)", nullptr);

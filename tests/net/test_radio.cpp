@@ -41,7 +41,8 @@ struct LinearMotion : net::MobilePositions {
   }
   double speed_bound() const override {
     double s = 0;
-    for (const auto& [id, line] : lines) s = std::max(s, line.second.norm());
+    for (const auto& [id, line] : lines)
+      s = std::max(s, line.second.norm());
     return s;
   }
 };
@@ -60,11 +61,14 @@ struct Rig {
   }
 };
 
-net::Payload beacon(NodeId from) { return net::Beacon{from, Vec2{0, 0}}; }
+net::Payload beacon(NodeId from) {
+  return net::Beacon{from, Vec2{0, 0}};
+}
 
 // A side × side cell-centred sensor grid as nodes 0 … side²−1 (indexed as lines by the radio),
 // then `robots` robots at random places moving at up to `speed` per axis.
-void add_grid_and_robots(Rig& rig, int side, int robots, double speed, std::uint64_t seed, std::uint32_t sensor_interest) {
+void add_grid_and_robots(Rig& rig, int side, int robots, double speed, std::uint64_t seed,
+                         std::uint32_t sensor_interest) {
   for (int j = 0; j < side; ++j)
     for (int i = 0; i < side; ++i) {
       const auto id = static_cast<std::uint32_t>(j * side + i);
@@ -74,7 +78,8 @@ void add_grid_and_robots(Rig& rig, int side, int robots, double speed, std::uint
   sim::RandomStream rng(seed);
   for (int r = 0; r < robots; ++r) {
     const auto id = static_cast<std::uint32_t>(side * side + r);
-    rig.motion.lines[id] = {Vec2{rng.uniform01(), rng.uniform01()}, Vec2{rng.uniform(-speed, speed), rng.uniform(-speed, speed)}};
+    rig.motion.lines[id] = {Vec2{rng.uniform01(), rng.uniform01()},
+                            Vec2{rng.uniform(-speed, speed), rng.uniform(-speed, speed)}};
     rig.radio.add_mobile_node(sim::node_id(id), id);
   }
 }
@@ -118,13 +123,13 @@ TEST_CASE("broadcast deliveries equal a brute-force range check, static and movi
     }
     sim.run();
     std::multiset<std::pair<std::uint32_t, std::uint32_t>> got;
-    for (const auto& d : rec.deliveries) got.insert({sim::index(d.source), sim::index(d.receiver)});
+    for (const auto& d : rec.deliveries)
+      got.insert({sim::index(d.source), sim::index(d.receiver)});
     REQUIRE(got == expected);
   }
 }
 
-TEST_CASE("nothing is delivered beyond the range and the addressee of a unicast gets it",
-          "[net]") {
+TEST_CASE("nothing is delivered beyond the range and the addressee of a unicast gets it", "[net]") {
   net::RadioParams params;
   params.max_range = 0.5;
   Rig rig(params, 1);
@@ -168,13 +173,13 @@ TEST_CASE("the loss rate lies inside the binomial 99.9% interval", "[net]") {
     INFO("p = " << p << " observed " << lost_rate);
     CHECK(std::fabs(lost_rate - p) <= 3.29 * sd);  // two-sided 99.9 %
     std::uint64_t lost = 0;
-    for (int i = 0; i < n; ++i) lost += radio.stats(sim::node_id(i)).lost_count;
+    for (int i = 0; i < n; ++i)
+      lost += radio.stats(sim::node_id(i)).lost_count;
     CHECK(static_cast<double>(lost) + delivered == trials);
   }
 }
 
-TEST_CASE("delay is latency plus airtime, and a transmitter sends one frame at a time",
-          "[net]") {
+TEST_CASE("delay is latency plus airtime, and a transmitter sends one frame at a time", "[net]") {
   net::RadioParams params;
   params.latency_s = 1e-4;
   params.bitrate_bps = 1e5;
@@ -185,7 +190,8 @@ TEST_CASE("delay is latency plus airtime, and a transmitter sends one frame at a
   radio.broadcast(sim::node_id(0), 0.2, beacon(sim::node_id(0)));
   radio.broadcast(sim::node_id(0), 0.2, beacon(sim::node_id(0)));
   sim.run();
-  const double bytes = params.sizes.header_bytes + params.sizes.id_bytes + params.sizes.position_bytes;
+  const double bytes =
+      params.sizes.header_bytes + params.sizes.id_bytes + params.sizes.position_bytes;
   const double air = bytes * 8 / params.bitrate_bps;
   REQUIRE(rec.deliveries.size() == 2);
   CHECK(rec.deliveries[0].at_s == Approx(air + 1e-4).epsilon(1e-9));
@@ -213,7 +219,8 @@ TEST_CASE("frames due together share one event unless something was scheduled be
     listener.order = &order;
     listener.arrival = &arrival;
     radio.set_listener(&listener);
-    for (std::uint32_t i = 0; i < 4; ++i) radio.add_static_node(sim::node_id(i), Vec2{0.1, 0.05 * i}, i);
+    for (std::uint32_t i = 0; i < 4; ++i)
+      radio.add_static_node(sim::node_id(i), Vec2{0.1, 0.05 * i}, i);
     radio.add_static_node(sim::node_id(4), Vec2{0, 0}, 4);
     for (std::uint32_t i = 0; i < 4; ++i) {
       radio.unicast(sim::node_id(i), sim::node_id(4), beacon(sim::node_id(i)));
@@ -252,13 +259,15 @@ TEST_CASE("energy equals the first-order radio model, continuous at d0", "[net]"
   params.meters_per_unit = 100;
   net::Radio radio(sim, params, 1);
   radio.add_static_node(sim::node_id(0), Vec2{0, 0}, 0);
-  radio.add_static_node(sim::node_id(1), Vec2{0.5, 0}, 1);   // 50 m
-  radio.add_static_node(sim::node_id(2), Vec2{0.2, 0}, 2);   // overhears the unicast to node 1
-  radio.add_static_node(sim::node_id(3), Vec2{0.9, 0}, 3);   // out of range
+  radio.add_static_node(sim::node_id(1), Vec2{0.5, 0}, 1);  // 50 m
+  radio.add_static_node(sim::node_id(2), Vec2{0.2, 0}, 2);  // overhears the unicast to node 1
+  radio.add_static_node(sim::node_id(3), Vec2{0.9, 0}, 3);  // out of range
   radio.unicast(sim::node_id(0), sim::node_id(1), beacon(sim::node_id(0)));
   sim.run();
-  const double bits = 8.0 * (params.sizes.header_bytes + params.sizes.id_bytes + params.sizes.position_bytes);
-  CHECK(radio.stats(sim::node_id(0)).energy_tx_j == Approx(bits * 50e-9 + bits * 10e-12 * 2500).epsilon(1e-12));
+  const double bits =
+      8.0 * (params.sizes.header_bytes + params.sizes.id_bytes + params.sizes.position_bytes);
+  CHECK(radio.stats(sim::node_id(0)).energy_tx_j ==
+        Approx(bits * 50e-9 + bits * 10e-12 * 2500).epsilon(1e-12));
   CHECK(radio.stats(sim::node_id(1)).energy_rx_j == Approx(bits * 50e-9).epsilon(1e-12));
   CHECK(radio.stats(sim::node_id(2)).energy_rx_j == Approx(bits * 50e-9).epsilon(1e-12));
   CHECK(radio.stats(sim::node_id(3)).energy_rx_j == 0.0);
@@ -266,7 +275,8 @@ TEST_CASE("energy equals the first-order radio model, continuous at d0", "[net]"
 
 TEST_CASE("a node whose battery empties stops sending and receiving", "[net]") {
   net::RadioParams params;
-  const double bits = 8.0 * (params.sizes.header_bytes + params.sizes.id_bytes + params.sizes.position_bytes);
+  const double bits =
+      8.0 * (params.sizes.header_bytes + params.sizes.id_bytes + params.sizes.position_bytes);
   const double tx = net::tx_energy_j(params.energy, bits, 0.1 * params.meters_per_unit);
   params.energy.battery_j = 2.5 * tx;  // enough for two frames, not three
   Rig rig(params, 1);
@@ -315,7 +325,8 @@ TEST_CASE("loss draws of one link do not depend on other nodes", "[net]") {
     for (int i = 0; i < extra_nodes; ++i)
       radio.add_static_node(sim::node_id(2 + i), Vec2{0.01 * i, 0.02}, 2 + i);
     std::vector<double> got;
-    for (int k = 0; k < 64; ++k) radio.broadcast(sim::node_id(0), 0.1, beacon(sim::node_id(0)));
+    for (int k = 0; k < 64; ++k)
+      radio.broadcast(sim::node_id(0), 0.1, beacon(sim::node_id(0)));
     sim.run();
     for (const auto& d : rec.deliveries)
       if (d.receiver == sim::node_id(1)) got.push_back(d.at_s);
@@ -333,13 +344,16 @@ TEST_CASE("receptions bring forward the moment an idle drain empties a battery",
   radio.add_static_node(sim::node_id(0), Vec2{0, 0}, 0);
   radio.add_static_node(sim::node_id(1), Vec2{0.01, 0}, 1);
   sim.at(sim::time_at(1.0), [&radio] {
-    for (int k = 0; k < 1000; ++k) radio.broadcast(sim::node_id(0), 0.02, beacon(sim::node_id(0)));
+    for (int k = 0; k < 1000; ++k)
+      radio.broadcast(sim::node_id(0), 0.02, beacon(sim::node_id(0)));
   });
   sim.run_until(sim::time_at(10.0));
-  const double bits = 8.0 * (params.sizes.header_bytes + params.sizes.id_bytes + params.sizes.position_bytes);
+  const double bits =
+      8.0 * (params.sizes.header_bytes + params.sizes.id_bytes + params.sizes.position_bytes);
   const double heard_j = 1000 * bits * params.energy.electronics_j_per_bit;
   // Node 1 drains 0.5 W and paid for 1000 receptions: empty at (2 J − heard) / 0.5 W.
-  CHECK(sim::to_seconds(radio.stats(sim::node_id(1)).died_at) == Approx((2.0 - heard_j) / 0.5).epsilon(1e-9));
+  CHECK(sim::to_seconds(radio.stats(sim::node_id(1)).died_at) ==
+        Approx((2.0 - heard_j) / 0.5).epsilon(1e-9));
   CHECK(radio.energy_j(sim::node_id(1)) == Approx(2.0).epsilon(1e-9));
 }
 
@@ -383,12 +397,14 @@ TEST_CASE("frames booked in bulk on a sensor grid give every node exactly the br
                                      : net::Payload{net::Position{sim::node_id(src), p}};
     const auto bytes = net::size_bytes(payload, params.sizes);
     const bool unicast = dst != src;
-    const double r = std::min(unicast ? (radio.position(sim::node_id(dst)) - p).norm() : range, params.max_range);
+    const double r = std::min(unicast ? (radio.position(sim::node_id(dst)) - p).norm() : range,
+                              params.max_range);
     for (int j = 0; j < n; ++j) {
       if (static_cast<std::uint32_t>(j) == src) continue;
       const Vec2 q = radio.position(sim::node_id(j));
       const double dx = q.x() - p.x(), dy = q.y() - p.y();
-      const bool in = unicast && static_cast<std::uint32_t>(j) == dst ? (q - p).norm() <= r : dx * dx + dy * dy <= r * r;
+      const bool in = unicast && static_cast<std::uint32_t>(j) == dst ? (q - p).norm() <= r
+                                                                      : dx * dx + dy * dy <= r * r;
       if (!in) continue;
       heard[j] += bytes;
       if (unicast && static_cast<std::uint32_t>(j) != dst) ++overheard[j];
@@ -406,7 +422,8 @@ TEST_CASE("frames booked in bulk on a sensor grid give every node exactly the br
     if (kind != 2) dst = src;
     if (kind == 2 && dst == src) dst = (src + 1) % n;
     const double range = rng.uniform(0.0, 0.6);
-    sim.at(sim::time_at(t), [&send, src, dst, range, kind] { send(src, dst, range, kind == 2 ? 1 : kind); });
+    sim.at(sim::time_at(t),
+           [&send, src, dst, range, kind] { send(src, dst, range, kind == 2 ? 1 : kind); });
   }
   sim.run();
   for (int j = 0; j < n; ++j) {
@@ -417,8 +434,10 @@ TEST_CASE("frames booked in bulk on a sensor grid give every node exactly the br
   }
 }
 
-TEST_CASE("bursts of unicasts to one moving robot at one instant are overheard exactly as brute force says",
-          "[net]") {
+TEST_CASE(
+    "bursts of unicasts to one moving robot at one instant are overheard exactly as brute force "
+    "says",
+    "[net]") {
   // Replies to one robot at one instant reuse the robots near it (Radio::NearAddressee): senders
   // near and far in either order (the neighbourhood grows), and bursts to two robots interleaved
   // at one instant (it is rebuilt), must give the counts a per-frame range check gives.
@@ -443,24 +462,32 @@ TEST_CASE("bursts of unicasts to one moving robot at one instant are overheard e
       const double dx = q.x() - p.x(), dy = q.y() - p.y();
       if (dx * dx + dy * dy <= r * r) ++overheard[j];
     }
-    radio.unicast(sim::node_id(src), sim::node_id(dst), net::Payload{net::Position{sim::node_id(src), p}});
+    radio.unicast(sim::node_id(src), sim::node_id(dst),
+                  net::Payload{net::Position{sim::node_id(src), p}});
   };
   // Each burst: the 60 sensors nearest to robot `a` send to it, nearest first (its neighbourhood
   // must grow) or farthest first, and every 7th sends to the robot nearest to `a` instead.
   std::vector<std::uint32_t> addressees;
-  for (int k = 0; k < 40; ++k) addressees.push_back(static_cast<std::uint32_t>(sensors + rng.below(robots)));
+  for (int k = 0; k < 40; ++k)
+    addressees.push_back(static_cast<std::uint32_t>(sensors + rng.below(robots)));
   auto run_burst = [&](std::size_t index) {
     const std::uint32_t a = addressees[index];
     const Vec2 pa = radio.position(sim::node_id(a));
-    auto distance_to_a = [&](std::uint32_t x) { return (radio.position(sim::node_id(x)) - pa).norm(); };
-    std::uint32_t b = a == static_cast<std::uint32_t>(sensors) ? a + 1 : static_cast<std::uint32_t>(sensors);
+    auto distance_to_a = [&](std::uint32_t x) {
+      return (radio.position(sim::node_id(x)) - pa).norm();
+    };
+    std::uint32_t b =
+        a == static_cast<std::uint32_t>(sensors) ? a + 1 : static_cast<std::uint32_t>(sensors);
     for (int r = 0; r < robots; ++r) {
       const auto id = static_cast<std::uint32_t>(sensors + r);
       if (id != a && distance_to_a(id) < distance_to_a(b)) b = id;
     }
     std::vector<std::uint32_t> order(static_cast<std::size_t>(sensors));
-    for (int k = 0; k < sensors; ++k) order[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(k);
-    std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return distance_to_a(x) < distance_to_a(y); });
+    for (int k = 0; k < sensors; ++k)
+      order[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(k);
+    std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
+      return distance_to_a(x) < distance_to_a(y);
+    });
     order.resize(60);
     if (index % 2 == 1) std::reverse(order.begin(), order.end());
     for (std::size_t k = 0; k < order.size(); ++k) {
@@ -469,7 +496,8 @@ TEST_CASE("bursts of unicasts to one moving robot at one instant are overheard e
         const auto c = static_cast<std::uint32_t>(sensors + (index * 7) % robots);
         if (c != a && c != b) {
           auto& [p0, v] = motion.lines[c];
-          p0 = radio.position(sim::node_id(order[k])) + Vec2{1e-4, 0} - sim::to_seconds(sim.now()) * v;
+          p0 = radio.position(sim::node_id(order[k])) + Vec2{1e-4, 0} -
+               sim::to_seconds(sim.now()) * v;
           radio.mobile_node_jumped();
         }
       }

@@ -657,12 +657,15 @@ TEST_CASE("The row slicer's ends are within its margin of the exact ones on rand
   // 2·margin() outside must be out. Random Voronoi cells (tilted edges), the rectangle (flat
   // top and bottom, rows exactly on them) and a sliver with edges almost horizontal.
   Rng rng(11);
-  std::vector<ConvexPolygon> polygons{geo::rectangle(0.1, 0.2, 0.7, 0.9),
-                                      ConvexPolygon{{Vec2{0, 0.5}, Vec2{1, 0.5 + 1e-9}, Vec2{0.2, 0.5 + 3e-9}}}};
+  std::vector<ConvexPolygon> polygons{
+      geo::rectangle(0.1, 0.2, 0.7, 0.9),
+      ConvexPolygon{{Vec2{0, 0.5}, Vec2{1, 0.5 + 1e-9}, Vec2{0.2, 0.5 + 3e-9}}}};
   for (int set = 0; set < 40; ++set) {
     std::vector<Vec2> sites;
-    for (int i = 0; i < 12; ++i) sites.push_back(Vec2{rng.uniform(), rng.uniform()});
-    for (const Cell& cell : geo::voronoi_cells(sites, geo::rectangle(0, 0, 1, 1))) polygons.push_back(cell.polygon);
+    for (int i = 0; i < 12; ++i)
+      sites.push_back(Vec2{rng.uniform(), rng.uniform()});
+    for (const Cell& cell : geo::voronoi_cells(sites, geo::rectangle(0, 0, 1, 1)))
+      polygons.push_back(cell.polygon);
   }
   int tested = 0;
   geo::RowSlicer slicer;
@@ -672,8 +675,10 @@ TEST_CASE("The row slicer's ends are within its margin of the exact ones on rand
     const double m = slicer.margin();
     REQUIRE(m < 1e-13);
     std::vector<double> rows{slicer.y_min(), slicer.y_max()};
-    for (const Vec2& v : polygon.vertices) rows.push_back(v.y());  // rows through vertices
-    for (int k = 0; k < 30; ++k) rows.push_back(rng.uniform(slicer.y_min(), slicer.y_max()));
+    for (const Vec2& v : polygon.vertices)
+      rows.push_back(v.y());  // rows through vertices
+    for (int k = 0; k < 30; ++k)
+      rows.push_back(rng.uniform(slicer.y_min(), slicer.y_max()));
     std::sort(rows.begin(), rows.end());
     for (const double y : rows) {
       const auto [left, right] = slicer.extent(y);
@@ -696,25 +701,31 @@ TEST_CASE("The row slicer's ends are within its margin of the exact ones on rand
   CHECK_FALSE(slicer.valid());
 }
 
-TEST_CASE("Convex membership answers exactly as contains() for points in rows, in any order and on the boundary",
-          "[protocols]") {
+TEST_CASE(
+    "Convex membership answers exactly as contains() for points in rows, in any order and on the "
+    "boundary",
+    "[protocols]") {
   // The prepared test decides most points from a row's extent and its margin; a wrong margin,
   // a stale row or a chain not rewound when rows go down would disagree with the exact test
   // somewhere among these: sensor rows in id order, the same points shuffled, every vertex,
   // points on edges and one ulp either side of them.
   Rng rng(5);
-  std::vector<ConvexPolygon> polygons{geo::rectangle(0.1, 0.2, 0.7, 0.9),
-                                      ConvexPolygon{{Vec2{0, 0.5}, Vec2{1, 0.5 + 1e-9}, Vec2{0.2, 0.5 + 3e-9}}},
-                                      ConvexPolygon{{Vec2{0, 0}, Vec2{1, 1}}},                      // not a polygon
-                                      ConvexPolygon{{Vec2{0, 0.5}, Vec2{1, 0.5}, Vec2{0.5, 0.5}}}};  // no height
+  std::vector<ConvexPolygon> polygons{
+      geo::rectangle(0.1, 0.2, 0.7, 0.9),
+      ConvexPolygon{{Vec2{0, 0.5}, Vec2{1, 0.5 + 1e-9}, Vec2{0.2, 0.5 + 3e-9}}},
+      ConvexPolygon{{Vec2{0, 0}, Vec2{1, 1}}},                       // not a polygon
+      ConvexPolygon{{Vec2{0, 0.5}, Vec2{1, 0.5}, Vec2{0.5, 0.5}}}};  // no height
   for (int set = 0; set < 20; ++set) {
     std::vector<Vec2> sites;
-    for (int i = 0; i < 10; ++i) sites.push_back(Vec2{rng.uniform(), rng.uniform()});
-    for (const Cell& cell : geo::voronoi_cells(sites, geo::rectangle(0, 0, 1, 1))) polygons.push_back(cell.polygon);
+    for (int i = 0; i < 10; ++i)
+      sites.push_back(Vec2{rng.uniform(), rng.uniform()});
+    for (const Cell& cell : geo::voronoi_cells(sites, geo::rectangle(0, 0, 1, 1)))
+      polygons.push_back(cell.polygon);
   }
   std::vector<Vec2> points;  // a 40 × 40 cell-centred grid, row by row
   for (int j = 0; j < 40; ++j)
-    for (int i = 0; i < 40; ++i) points.push_back(Vec2{(i + 0.5) / 40, (j + 0.5) / 40});
+    for (int i = 0; i < 40; ++i)
+      points.push_back(Vec2{(i + 0.5) / 40, (j + 0.5) / 40});
   std::vector<Vec2> shuffled = points;
   std::shuffle(shuffled.begin(), shuffled.end(), rng.engine);
   geo::ConvexMembership membership;
@@ -735,7 +746,8 @@ TEST_CASE("Convex membership answers exactly as contains() for points in rows, i
     for (const std::vector<Vec2>* list : {&points, &shuffled, &edge_points, &points})
       for (const Vec2& p : *list) {
         const bool exact = geo::contains(polygon, p);
-        INFO("point (" << p.x() << ", " << p.y() << ") in a polygon of " << v.size() << " vertices");
+        INFO("point (" << p.x() << ", " << p.y() << ") in a polygon of " << v.size()
+                       << " vertices");
         REQUIRE(membership.contains(p) == exact);
         inside += exact ? 1 : 0;
         boundary += list == &edge_points && exact ? 1 : 0;

@@ -64,7 +64,8 @@ class FakeHost : public RobotHost {
   /// Fires the earliest timer of `kind` (advancing the clock to it) and returns true.
   bool fire(VoronoiProtocol& p, std::uint32_t kind) {
     auto it = std::min_element(timers.begin(), timers.end(), [&](const Timer& a, const Timer& b) {
-      return (a.kind == kind) > (b.kind == kind) || ((a.kind == kind) == (b.kind == kind) && a.at < b.at);
+      return (a.kind == kind) > (b.kind == kind) ||
+             ((a.kind == kind) == (b.kind == kind) && a.at < b.at);
     });
     if (it == timers.end() || it->kind != kind) return false;
     const Timer t = *it;
@@ -95,7 +96,8 @@ void answer_last(FakeHost& host, VoronoiProtocol& p, const World& w) {
   const Sent& s = host.last();
   if (const auto* d = std::get_if<net::Discover>(&s.payload)) {
     for (const auto& [id, pos] : w.robots)
-      if ((pos - d->position).norm() <= s.range) p.on_frame(frame(net::Neighbor{sim::node_id(id), pos}));
+      if ((pos - d->position).norm() <= s.range)
+        p.on_frame(frame(net::Neighbor{sim::node_id(id), pos}));
   } else if (const auto* q = std::get_if<net::Sense>(&s.payload)) {
     const ConvexPolygon cell{q->cell};
     for (const auto& [id, pos] : w.sensors)
@@ -125,7 +127,8 @@ UpdateRecord run_update(FakeHost& host, VoronoiProtocol& p, const World& w) {
   REQUIRE(host.fire(p, VoronoiProtocol::kTick));
   for (int guard = 0; guard < 50 && host.records.size() == before; ++guard) {
     answer_last(host, p, w);
-    if (!host.fire(p, VoronoiProtocol::kRoundEnd)) REQUIRE(host.fire(p, VoronoiProtocol::kSenseEnd));
+    if (!host.fire(p, VoronoiProtocol::kRoundEnd))
+      REQUIRE(host.fire(p, VoronoiProtocol::kSenseEnd));
     else if (std::holds_alternative<net::Sense>(host.last().payload)) {
       answer_last(host, p, w);
       REQUIRE(host.fire(p, VoronoiProtocol::kSenseEnd));
@@ -184,8 +187,9 @@ TEST_CASE("the paper's rule: R grows to 2d and stops on R >= 2d, where a strict 
   CHECK(r.readings == 2);
   CHECK_FALSE(r.truncated);
   // The SENSE of the first round reached exactly R (the cell was the whole square).
-  const auto sense = std::find_if(host.sent.begin(), host.sent.end(),
-                                  [](const Sent& s) { return std::holds_alternative<net::Sense>(s.payload); });
+  const auto sense = std::find_if(host.sent.begin(), host.sent.end(), [](const Sent& s) {
+    return std::holds_alternative<net::Sense>(s.payload);
+  });
   REQUIRE(sense != host.sent.end());
   CHECK(sense->range == 0.25);
   // Centroid of the two equally weighted readings.
@@ -279,15 +283,18 @@ TEST_CASE("range decay shrinks R by step after patience unchanged updates, never
   }
   // Updates 1-3 end with R = 0.25, then it decays; 0.20 three times, 0.15 three times, then the
   // floor 0.12 (not 0.10).
-  const std::vector<double> expected = {0.25, 0.25, 0.20, 0.20, 0.20, 0.15, 0.15, 0.15, 0.12, 0.12, 0.12, 0.12};
+  const std::vector<double> expected = {0.25, 0.25, 0.20, 0.20, 0.20, 0.15,
+                                        0.15, 0.15, 0.12, 0.12, 0.12, 0.12};
   REQUIRE(radii.size() == expected.size());
-  for (std::size_t i = 0; i < radii.size(); ++i) CHECK(radii[i] == Approx(expected[i]));
+  for (std::size_t i = 0; i < radii.size(); ++i)
+    CHECK(radii[i] == Approx(expected[i]));
 }
 
-TEST_CASE("a tick that finds the previous update still running is delayed and counted", "[protocols]") {
+TEST_CASE("a tick that finds the previous update still running is delayed and counted",
+          "[protocols]") {
   World w;
   ProtocolParams params;
-  params.period_s = 0.001;        // shorter than one round
+  params.period_s = 0.001;  // shorter than one round
   params.reply_timeout_s = 0.002;
   FakeHost host;
   VoronoiProtocol p(host, params, unit_square(), 0.0);
@@ -323,7 +330,8 @@ TEST_CASE("the gabriel variant bounds the cell by Gabriel neighbours only, in on
   CHECK(r.neighbours == std::vector<NodeId>{sim::node_id(1)});
 }
 
-TEST_CASE("fixed_radius runs one round at its radius and flags a cell reaching past it", "[protocols]") {
+TEST_CASE("fixed_radius runs one round at its radius and flags a cell reaching past it",
+          "[protocols]") {
   World w;
   w.robots[1] = Vec2{0.9375, 0.5};
   ProtocolParams params;
@@ -356,7 +364,8 @@ TEST_CASE("stale readings of an earlier update and late replies are ignored", "[
   CHECK(host.records.back().no_mass);
 }
 
-TEST_CASE("an update records every reply it used, at the position the reply carried", "[protocols]") {
+TEST_CASE("an update records every reply it used, at the position the reply carried",
+          "[protocols]") {
   World w;
   w.robots[1] = Vec2{0.9375, 0.5};
   w.robots[2] = Vec2{0.5, 0.125};
@@ -369,13 +378,15 @@ TEST_CASE("an update records every reply it used, at the position the reply carr
   initialise(host, p, {1.5});
   const UpdateRecord r = run_update(host, p, w);
   REQUIRE(r.heard.size() == 3);
-  for (const HeardRobot& h : r.heard) CHECK(h.position == w.robots.at(sim::index(h.robot)));
+  for (const HeardRobot& h : r.heard)
+    CHECK(h.position == w.robots.at(sim::index(h.robot)));
   CHECK(r.neighbours == std::vector<NodeId>{sim::node_id(1), sim::node_id(2)});
   CHECK(heard_neighbours(r.position, r.heard, rectangle(0, 0, 1, 1)) == r.neighbours);
 }
 
-TEST_CASE("a reply that comes after its round's deadline still bounds the cell the update stops with",
-          "[protocols]") {
+TEST_CASE(
+    "a reply that comes after its round's deadline still bounds the cell the update stops with",
+    "[protocols]") {
   // R = 1.5 certifies the whole square at once (farthest vertex √0.5); the neighbour's reply is
   // queued behind other frames and arrives while the sensors answer the SENSE. Its bisector
   // x = 0.6 cuts the cell, and R >= 2d still holds for the cut cell.

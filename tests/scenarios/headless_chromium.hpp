@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <string>
 
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+#include <catch2/catch.hpp>
 
 #include "text_files.hpp"
 
@@ -20,13 +20,13 @@ inline bool in_ci() {
 }
 
 // Skips the current test (visibly) unless `present`; fails it instead under CI.
-#define MASNET_REQUIRE_TOOL(present, what)                                                    \
-  do {                                                                                        \
-    if (!(present)) {                                                                         \
+#define MASNET_REQUIRE_TOOL(present, what)                                                       \
+  do {                                                                                           \
+    if (!(present)) {                                                                            \
       if (::masnet::test::in_ci()) FAIL(std::string(what) + " is missing, and CI must have it"); \
-      WARN(std::string("skipped: ") + (what) + " is missing");                               \
-      return;                                                                                 \
-    }                                                                                         \
+      WARN(std::string("skipped: ") + (what) + " is missing");                                   \
+      return;                                                                                    \
+    }                                                                                            \
   } while (false)
 
 inline const std::filesystem::path kChromium = "/usr/bin/chromium";
@@ -38,11 +38,14 @@ struct HeadlessPage {
 
 /// Loads `page` in headless Chromium with a fresh profile under `work_dir`, which also receives
 /// dom.html and chromium.log (and the screenshot when `screenshot` is not empty).
-inline HeadlessPage open_headless(const std::filesystem::path& page, const std::filesystem::path& work_dir,
+inline HeadlessPage open_headless(const std::filesystem::path& page,
+                                  const std::filesystem::path& work_dir,
                                   const std::filesystem::path& screenshot = {}) {
   const std::filesystem::path dom = work_dir / "dom.html", log = work_dir / "chromium.log";
   const std::string shot =
-      screenshot.empty() ? std::string() : fmt::format("--window-size=1200,2000 --screenshot='{}' ", screenshot.string());
+      screenshot.empty()
+          ? std::string()
+          : fmt::format("--window-size=1200,2000 --screenshot='{}' ", screenshot.string());
   const std::string command = fmt::format(
       "timeout 120 '{}' --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
       "--disable-background-networking --disable-component-update --disable-sync "

@@ -3,9 +3,9 @@
 // made once per test file that asks for it and removed at exit.
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <cstdlib>
 #include <filesystem>
-#include <fmt/format.h>
 #include <string>
 #include <system_error>
 

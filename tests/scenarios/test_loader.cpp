@@ -1,6 +1,7 @@
-// The scenario loader against bad input (docs/scenario-reference.md): every file under malformed/ is checked with
-// `masnet validate` and `masnet run` as a subprocess, for its exact `file:line:col: message`
-// lines, exit code 2 and no run directory; overrides, seeds and resolved defaults in-process.
+// The scenario loader against bad input (docs/scenario-reference.md): every file under malformed/
+// is checked with `masnet validate` and `masnet run` as a subprocess, for its exact `file:line:col:
+// message` lines, exit code 2 and no run directory; overrides, seeds and resolved defaults
+// in-process.
 #include <catch2/catch.hpp>
 
 #include <sys/wait.h>
@@ -122,11 +123,14 @@ const std::vector<Case> kCases = {
     {"gaussian_bump_bad_sigma.yaml",
      {"gaussian_bump_bad_sigma.yaml:5:35: field.bumps[0].sigma: must be > 0 (got 0)"}},
     {"diffusion_unstable_step.yaml",
-     {"diffusion_unstable_step.yaml:4:56: field.diffusion.dt: dt_s = 0.01 exceeds 0.000387909 s, the stability "
-      "limit of the single RK4 step that fidelity mode takes; use a smaller dt_s, fewer cells or mode physical "
+     {"diffusion_unstable_step.yaml:4:56: field.diffusion.dt: dt_s = 0.01 exceeds 0.000387909 s, "
+      "the stability "
+      "limit of the single RK4 step that fidelity mode takes; use a smaller dt_s, fewer cells or "
+      "mode physical "
       "(which substeps)"}},
     {"control_without_diffusion.yaml",
-     {"control_without_diffusion.yaml:5:15: control.dispensers: the control section applies to field kind diffusion"}},
+     {"control_without_diffusion.yaml:5:15: control.dispensers: the control section applies to "
+      "field kind diffusion"}},
     {"collision_level.yaml",
      {"collision_level.yaml:3:10: radio.level: level 'collision' is not available yet (use "
       "ideal or airtime)"}},
@@ -149,60 +153,96 @@ const std::vector<Case> kCases = {
     {"null_duration.yaml",
      {"null_duration.yaml:2:1: duration: expected a number, got nothing (null)"}},
     {"null_values.yaml",
-     {"null_values.yaml:4:3: protocol.kind: expected one of none, radius_doubling, oracle, fixed_radius, gabriel, got nothing (null)",
+     {"null_values.yaml:4:3: protocol.kind: expected one of none, radius_doubling, oracle, "
+      "fixed_radius, gabriel, got nothing (null)",
       "null_values.yaml:5:1: radio: expected a mapping of keys, got nothing (null)",
-      "null_values.yaml:8:3: robots.positions: expected a list of points [[x, y], ...], got nothing (null)",
+      "null_values.yaml:8:3: robots.positions: expected a list of points [[x, y], ...], got "
+      "nothing (null)",
       "null_values.yaml:10:3: output.snapshots: expected a list of numbers, got nothing (null)"}},
     {"invalid_utf8.yaml",
-     {"invalid_utf8.yaml:3:10: the text is not valid UTF-8 (byte 0xB1 here); save the file as UTF-8"}},
+     {"invalid_utf8.yaml:3:10: the text is not valid UTF-8 (byte 0xB1 here); save the file as "
+      "UTF-8"}},
     {"name_with_path.yaml",
-     {"name_with_path.yaml:3:7: name: '../../x' is not a valid name (it names the run directory: use 1 to 64 of the characters A-Z a-z 0-9 . _ -, not starting with '.' or '-')"}},
+     {"name_with_path.yaml:3:7: name: '../../x' is not a valid name (it names the run directory: "
+      "use 1 to 64 of the characters A-Z a-z 0-9 . _ -, not starting with '.' or '-')"}},
     {"name_with_control_characters.yaml",
-     {"name_with_control_characters.yaml:3:7: name: 'a\\x09b\\x1B[31m' is not a valid name (it names the run directory: use 1 to 64 of the characters A-Z a-z 0-9 . _ -, not starting with '.' or '-')"}},
+     {"name_with_control_characters.yaml:3:7: name: 'a\\x09b\\x1B[31m' is not a valid name (it "
+      "names the run directory: use 1 to 64 of the characters A-Z a-z 0-9 . _ -, not starting with "
+      "'.' or '-')"}},
     {"second_document.yaml",
-     {"second_document.yaml:2:1: a second YAML document starts here (the file must hold a single document; remove the '---' and what follows)"}},
+     {"second_document.yaml:2:1: a second YAML document starts here (the file must hold a single "
+      "document; remove the '---' and what follows)"}},
     {"yaml_tags.yaml",
-     {"yaml_tags.yaml:1:11: YAML tags are not supported (got '!!str'); write the value alone, quoted if it must stay a text",
-      "yaml_tags.yaml:3:10: YAML tags are not supported (got '!foo'); write the value alone, quoted if it must stay a text"}},
+     {"yaml_tags.yaml:1:11: YAML tags are not supported (got '!!str'); write the value alone, "
+      "quoted if it must stay a text",
+      "yaml_tags.yaml:3:10: YAML tags are not supported (got '!foo'); write the value alone, "
+      "quoted if it must stay a text"}},
     {"alias_bomb.yaml",
-     {"alias_bomb.yaml:7:45: the aliases (*name) repeat more than 100000 nodes in all (docs/scenario-reference.md, \"Limits\")"}},
+     {"alias_bomb.yaml:7:45: the aliases (*name) repeat more than 100000 nodes in all "
+      "(docs/scenario-reference.md, \"Limits\")"}},
     {"long_value.yaml",
-     {"long_value.yaml:4:10: radio.level: expected one of ideal, airtime, collision, got 'abababababababababababababababababababababababababababababababababababababababab… (1000000 bytes in all)'"}},
+     {"long_value.yaml:4:10: radio.level: expected one of ideal, airtime, collision, got "
+      "'abababababababababababababababababababababababababababababababababababababababab… (1000000 "
+      "bytes in all)'"}},
     {"period_below_resolution.yaml",
-     {"period_below_resolution.yaml:4:11: protocol.period: must be >= 1e-09 (1 ns, the clock's resolution) (got 1e-300)",
-      "period_below_resolution.yaml:6:18: output.sample_period: must be >= 1e-09 (1 ns, the clock's resolution) (got 1e-12)"}},
+     {"period_below_resolution.yaml:4:11: protocol.period: must be >= 1e-09 (1 ns, the clock's "
+      "resolution) (got 1e-300)",
+      "period_below_resolution.yaml:6:18: output.sample_period: must be >= 1e-09 (1 ns, the "
+      "clock's resolution) (got 1e-12)"}},
     {"periodic_work_budget.yaml",
-     {"periodic_work_budget.yaml:5:11: beacons.period: the run would take about 9e+10 periodic steps (protocol updates 9e+03, beacons 9e+10, trajectory rows 4.5e+03), more than the limit of 1e+09; use a longer period or a shorter duration, or set limits.allow_huge: true"}},
+     {"periodic_work_budget.yaml:5:11: beacons.period: the run would take about 9e+10 periodic "
+      "steps (protocol updates 9e+03, beacons 9e+10, trajectory rows 4.5e+03), more than the limit "
+      "of 1e+09; use a longer period or a shorter duration, or set limits.allow_huge: true"}},
     {"duration_too_long.yaml",
      {"duration_too_long.yaml:2:11: duration: must be <= 1e+09 (got 1e10)"}},
     {"too_many_samples.yaml",
-     {"too_many_samples.yaml:4:18: output.sample_period: the run would write about 1e+08 timeseries rows, more than the limit of 1e+07; use a longer sample_period, or set limits.allow_huge: true"}},
+     {"too_many_samples.yaml:4:18: output.sample_period: the run would write about 1e+08 "
+      "timeseries rows, more than the limit of 1e+07; use a longer sample_period, or set "
+      "limits.allow_huge: true"}},
     {"velocity_too_large.yaml",
-     {"velocity_too_large.yaml:6:37: field.bumps[0].velocity: coordinates must be within ±1e+12, got [1e308, 1e308]"}},
+     {"velocity_too_large.yaml:6:37: field.bumps[0].velocity: coordinates must be within ±1e+12, "
+      "got [1e308, 1e308]"}},
     {"number_too_large.yaml",
      {"number_too_large.yaml:3:14: radio.max_range: must be <= 1e+12 (got 1e300)"}},
     {"acoustic_density_overflow.yaml",
-     {"acoustic_density_overflow.yaml:5:10: field.alpha: the density could reach 1e520 (amplitude over min_distance^alpha for acoustic fields), past the limit of 1e100; use a smaller amplitude or alpha, or a larger min_distance"}},
+     {"acoustic_density_overflow.yaml:5:10: field.alpha: the density could reach 1e520 (amplitude "
+      "over min_distance^alpha for acoustic fields), past the limit of 1e100; use a smaller "
+      "amplitude or alpha, or a larger min_distance"}},
     {"scaled_density_overflow.yaml",
-     {"scaled_density_overflow.yaml:8:10: density_scaling.gamma: the scaled density could reach 1e120 (the peak density 1e6 to the power gamma), past the limit of 1e100; use a smaller gamma"}},
+     {"scaled_density_overflow.yaml:8:10: density_scaling.gamma: the scaled density could reach "
+      "1e120 (the peak density 1e6 to the power gamma), past the limit of 1e100; use a smaller "
+      "gamma"}},
     {"sensor_grid_over_limit.yaml",
-     {"sensor_grid_over_limit.yaml:5:7: sensors.ny: a 10000 x 10000 grid has more than 10000000 sensors (limits.allow_huge: true allows up to 100000000)"}},
+     {"sensor_grid_over_limit.yaml:5:7: sensors.ny: a 10000 x 10000 grid has more than 10000000 "
+      "sensors (limits.allow_huge: true allows up to 100000000)"}},
     {"robot_grid_over_limit.yaml",
-     {"robot_grid_over_limit.yaml:5:7: robots.ny: a 2000 x 1000 grid has more than 1000000 robots (limits.allow_huge: true allows up to 10000000)"}},
+     {"robot_grid_over_limit.yaml:5:7: robots.ny: a 2000 x 1000 grid has more than 1000000 robots "
+      "(limits.allow_huge: true allows up to 10000000)"}},
     {"many_robots_outside_domain.yaml",
-     {"many_robots_outside_domain.yaml:5:14: robots.positions: robot 1 at (1.5, 0.5) lies outside the domain",
-      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 2 at (2.5, 0.5) lies outside the domain",
-      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 3 at (3.5, 0.5) lies outside the domain",
-      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 4 at (4.5, 0.5) lies outside the domain",
-      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 5 at (5.5, 0.5) lies outside the domain",
-      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 6 at (6.5, 0.5) lies outside the domain",
-      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 7 at (7.5, 0.5) lies outside the domain",
-      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 8 at (8.5, 0.5) lies outside the domain",
-      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 9 at (9.5, 0.5) lies outside the domain",
-      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 10 at (10.5, 0.5) lies outside the domain",
+     {"many_robots_outside_domain.yaml:5:14: robots.positions: robot 1 at (1.5, 0.5) lies outside "
+      "the domain",
+      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 2 at (2.5, 0.5) lies outside "
+      "the domain",
+      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 3 at (3.5, 0.5) lies outside "
+      "the domain",
+      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 4 at (4.5, 0.5) lies outside "
+      "the domain",
+      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 5 at (5.5, 0.5) lies outside "
+      "the domain",
+      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 6 at (6.5, 0.5) lies outside "
+      "the domain",
+      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 7 at (7.5, 0.5) lies outside "
+      "the domain",
+      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 8 at (8.5, 0.5) lies outside "
+      "the domain",
+      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 9 at (9.5, 0.5) lies outside "
+      "the domain",
+      "many_robots_outside_domain.yaml:5:14: robots.positions: robot 10 at (10.5, 0.5) lies "
+      "outside the domain",
       "many_robots_outside_domain.yaml:5:14: ... and 3 more robots outside the domain"}},
     {"random_layout_sliver.yaml",
-     {"random_layout_sliver.yaml:7:10: sensors.count: layout random would draw about 2e+08 points (the domain "
+     {"random_layout_sliver.yaml:7:10: sensors.count: layout random would draw about 2e+08 points "
+      "(the domain "
       "fills 0.05% of its bounding box), more than the limit of 2e+07; use fewer nodes, or set "
       "limits.allow_huge: true"}},
     {"bad_limits.yaml",

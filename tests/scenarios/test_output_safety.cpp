@@ -27,7 +27,8 @@ namespace fs = std::filesystem;
 namespace {
 
 const std::string kMasnet = std::string(MASNET_BINARY_DIR) + "/scenarios/masnet";
-const std::string kAcoustic = std::string(MASNET_SOURCE_DIR) + "/scenarios/paper/acoustic_tracking.yaml";
+const std::string kAcoustic =
+    std::string(MASNET_SOURCE_DIR) + "/scenarios/paper/acoustic_tracking.yaml";
 // One simulated second, two snapshots: every output file, figures and report, in about 1 s.
 const std::string kShort = "--set duration=1 --set 'output.snapshots=[0.5,1]'";
 
@@ -59,17 +60,21 @@ struct Scratch {
     fs::remove(log);
     return o;
   }
-  void touch(const std::string& name) const { std::ofstream(dir / name) << "the user's own file\n"; }
+  void touch(const std::string& name) const {
+    std::ofstream(dir / name) << "the user's own file\n";
+  }
 };
 
 std::string run_command(const std::string& out, const std::string& extra = "") {
-  return fmt::format("'{}' run '{}' {} --quiet --out {} {}", kMasnet, kAcoustic, kShort, out, extra);
+  return fmt::format("'{}' run '{}' {} --quiet --out {} {}", kMasnet, kAcoustic, kShort, out,
+                     extra);
 }
 
 // Mounting needs root and a kernel that lets this process make a mount namespace.
 bool can_mount() {
-  static const int ok = std::system("unshare -m sh -c 'mount -t tmpfs -o size=64k tmpfs /mnt' "
-                                    "> /dev/null 2>&1") == 0;
+  static const int ok = std::system(
+                            "unshare -m sh -c 'mount -t tmpfs -o size=64k tmpfs /mnt' "
+                            "> /dev/null 2>&1") == 0;
   return ok;
 }
 
@@ -87,12 +92,14 @@ TEST_CASE("A run directory given with a trailing slash is the same directory", "
   CHECK(fs::exists(s.dir / "out" / "report.html"));
   // Nothing else is left beside it (no staging or replaced copy).
   std::size_t entries = 0;
-  for (const auto& e : fs::directory_iterator(s.dir)) entries += e.path().filename() == "out" ? 0 : 1;
+  for (const auto& e : fs::directory_iterator(s.dir))
+    entries += e.path().filename() == "out" ? 0 : 1;
   CHECK(entries == 0);
 }
 
-TEST_CASE("The working directory, its ancestors, the root and the home folder are never run directories",
-          "[scenarios]") {
+TEST_CASE(
+    "The working directory, its ancestors, the root and the home folder are never run directories",
+    "[scenarios]") {
   Scratch s("forbidden");
   fs::create_directories(s.dir / "work");
   s.touch("work/notes.txt");
@@ -118,21 +125,24 @@ TEST_CASE("The working directory, its ancestors, the root and the home folder ar
   CHECK(fs::exists(s.dir / "work" / "notes.txt"));
 }
 
-TEST_CASE("A forced run replaces a run's directory but never a folder of other files (--force)", "[scenarios]") {
+TEST_CASE("A forced run replaces a run's directory but never a folder of other files (--force)",
+          "[scenarios]") {
   Scratch s("force");
   fs::create_directories(s.dir / "mine");
   s.touch("mine/thesis.tex");
   const Outcome o = s.shell(run_command("mine", "--force"));
   CHECK(o.exit_code == 2);
   CHECK(o.output ==
-        "masnet run: refusing to replace 'mine': it is not empty and holds no masnet run (no readable "
+        "masnet run: refusing to replace 'mine': it is not empty and holds no masnet run (no "
+        "readable "
         "summary.json), so --force does not apply; choose another --out\n");
   CHECK(slurp(s.dir / "mine" / "thesis.tex") == "the user's own file\n");
   // A different run is replaced with --force only.
   REQUIRE(s.shell(run_command("run")).exit_code == 0);
   const Outcome other = s.shell(run_command("run", "--seed 7"));
   CHECK(other.exit_code == 2);
-  CHECK(other.output.find("it holds a different run (scenario 'acoustic_tracking', seed 1)") != std::string::npos);
+  CHECK(other.output.find("it holds a different run (scenario 'acoustic_tracking', seed 1)") !=
+        std::string::npos);
   CHECK(s.shell(run_command("run", "--seed 7 --force")).exit_code == 0);
   CHECK(nlohmann::json::parse(slurp(s.dir / "run" / "summary.json"))["seed"] == 7);
 }
@@ -143,7 +153,8 @@ TEST_CASE("A sweep refuses the working directory and a folder of other files, ev
   std::ofstream(s.dir / "sweep.yaml") << "base: " << kAcoustic << "\nseeds: [1]\n";
   const Outcome dot = s.shell(fmt::format("'{}' sweep sweep.yaml --out . --force", kMasnet));
   CHECK(dot.exit_code == 2);
-  CHECK(dot.output.find("masnet sweep: --out '.': an output directory cannot be the working directory") == 0);
+  CHECK(dot.output.find(
+            "masnet sweep: --out '.': an output directory cannot be the working directory") == 0);
   fs::create_directories(s.dir / "data" / "runs");
   s.touch("data/runs/keep.csv");
   const Outcome mine = s.shell(fmt::format("'{}' sweep sweep.yaml --out data --force", kMasnet));
@@ -154,7 +165,8 @@ TEST_CASE("A sweep refuses the working directory and a folder of other files, ev
   CHECK(fs::exists(s.dir / "data" / "runs" / "keep.csv"));
 }
 
-TEST_CASE("A failed write throws with the file and the system's reason, and never aborts", "[scenarios]") {
+TEST_CASE("A failed write throws with the file and the system's reason, and never aborts",
+          "[scenarios]") {
   // /dev/full accepts the open and fails every write with ENOSPC, as a full disk does.
   REQUIRE(fs::exists("/dev/full"));
   OutputFile out("/dev/full");
@@ -180,9 +192,10 @@ TEST_CASE("On a full disk a run publishes a complete directory or nothing", "[sc
   // From too small for the first file to just too small for the figures; the last fits.
   for (const char* size : {"8k", "200k", "700k", "1500k", "8m"}) {
     fs::create_directories(s.dir / "disk");
-    const Outcome o = s.shell(fmt::format(
-        "unshare -m sh -c \"mount -t tmpfs -o size={} tmpfs disk && {} ; echo exit=\\$? ; ls -A disk\"", size,
-        run_command("disk/run")));
+    const Outcome o =
+        s.shell(fmt::format("unshare -m sh -c \"mount -t tmpfs -o size={} tmpfs disk && {} ; echo "
+                            "exit=\\$? ; ls -A disk\"",
+                            size, run_command("disk/run")));
     INFO("tmpfs of " << size << ":\n" << o.output);
     if (o.output.find("exit=0") != std::string::npos) {
       CHECK(std::string(size) == "8m");
@@ -193,7 +206,8 @@ TEST_CASE("On a full disk a run publishes a complete directory or nothing", "[sc
     CHECK(o.output.find("exit=1") != std::string::npos);
     CHECK(o.output.find("masnet: cannot write the run directory 'disk/run': cannot write '") == 0);
     CHECK(o.output.find("No space left on device") != std::string::npos);
-    CHECK(o.output.find("masnet: nothing was written (the partial copy was removed)\n") != std::string::npos);
+    CHECK(o.output.find("masnet: nothing was written (the partial copy was removed)\n") !=
+          std::string::npos);
     // Nothing after "exit=1": the tmpfs holds neither the run nor a partial copy.
     CHECK(o.output.substr(o.output.find("exit=1")) == "exit=1\n");
   }
@@ -207,15 +221,17 @@ TEST_CASE("A run replacing an older one on a full disk keeps the older one whole
   Scratch s("full-replace");
   fs::create_directories(s.dir / "disk");
   // The first run fits (3 MB of 4); the second (another seed, --force) does not fit beside it.
-  const Outcome o = s.shell(fmt::format(
-      "unshare -m sh -c \"mount -t tmpfs -o size=4m tmpfs disk && {} && {} ; echo exit=\\$? ; ls -A disk; "
-      "grep -q '\\\"seed\\\": 1,' disk/run/summary.json && echo seed-1\"",
-      run_command("disk/run"), run_command("disk/run", "--seed 2 --force")));
+  const Outcome o =
+      s.shell(fmt::format("unshare -m sh -c \"mount -t tmpfs -o size=4m tmpfs disk && {} && {} ; "
+                          "echo exit=\\$? ; ls -A disk; "
+                          "grep -q '\\\"seed\\\": 1,' disk/run/summary.json && echo seed-1\"",
+                          run_command("disk/run"), run_command("disk/run", "--seed 2 --force")));
   INFO(o.output);
   CHECK(o.output.find("exit=1\nrun\nseed-1\n") != std::string::npos);
 }
 
-TEST_CASE("An unwritable destination is refused before simulating, by run and by sweep", "[scenarios]") {
+TEST_CASE("An unwritable destination is refused before simulating, by run and by sweep",
+          "[scenarios]") {
   if (!can_mount()) {
     WARN("skipped: cannot make a read-only bind mount here (needs root and mount namespaces)");
     return;
@@ -224,17 +240,20 @@ TEST_CASE("An unwritable destination is refused before simulating, by run and by
   fs::create_directories(s.dir / "ro");
   std::ofstream(s.dir / "sweep.yaml") << "base: " << kAcoustic << "\nseeds: [1]\n";
   const std::string mount = "mount --bind ro ro && mount -o remount,bind,ro ro";
-  const Outcome run = s.shell(fmt::format("unshare -m sh -c \"{} && {}\"", mount, run_command("ro/run")));
+  const Outcome run =
+      s.shell(fmt::format("unshare -m sh -c \"{} && {}\"", mount, run_command("ro/run")));
   CHECK(run.exit_code == 2);
-  CHECK(run.output == "masnet run: cannot write in '" + (s.dir / "ro").string() + "': Read-only file system\n");
+  CHECK(run.output ==
+        "masnet run: cannot write in '" + (s.dir / "ro").string() + "': Read-only file system\n");
   const Outcome nested =
       s.shell(fmt::format("unshare -m sh -c \"{} && {}\"", mount, run_command("ro/a/b/run")));
   CHECK(nested.exit_code == 2);
   CHECK(nested.output.find("Read-only file system") != std::string::npos);
-  const Outcome sweep = s.shell(
-      fmt::format("unshare -m sh -c \"{} && '{}' sweep sweep.yaml --out ro/sweep\"", mount, kMasnet));
+  const Outcome sweep = s.shell(fmt::format(
+      "unshare -m sh -c \"{} && '{}' sweep sweep.yaml --out ro/sweep\"", mount, kMasnet));
   CHECK(sweep.exit_code == 2);
-  CHECK(sweep.output == "masnet sweep: cannot write in '" + (s.dir / "ro").string() + "': Read-only file system\n");
+  CHECK(sweep.output ==
+        "masnet sweep: cannot write in '" + (s.dir / "ro").string() + "': Read-only file system\n");
 }
 
 TEST_CASE("Directory names are normalised and their forbidden forms recognised", "[scenarios]") {
@@ -251,8 +270,8 @@ TEST_CASE("Directory names are normalised and their forbidden forms recognised",
 
 TEST_CASE("masnet sweep caps --jobs at its runs and warns above the allowed CPUs", "[scenarios]") {
   Scratch s("jobs");
-  std::ofstream(s.dir / "sweep.yaml") << "base: " << kAcoustic
-                                      << "\nseeds: [1, 2]\nset: {duration: 0.2, output.snapshots: []}\n";
+  std::ofstream(s.dir / "sweep.yaml")
+      << "base: " << kAcoustic << "\nseeds: [1, 2]\nset: {duration: 0.2, output.snapshots: []}\n";
   const Outcome o = s.shell(fmt::format("'{}' sweep sweep.yaml --out out --jobs 3000", kMasnet));
   CHECK(o.exit_code == 0);
   CHECK(o.output.find("is more than the ") != std::string::npos);
@@ -260,18 +279,21 @@ TEST_CASE("masnet sweep caps --jobs at its runs and warns above the allowed CPUs
   CHECK(o.output.find("with 2 jobs × 1 rank") != std::string::npos);
 }
 
-TEST_CASE("A sweep under mpirun on one host notes once how to keep MPI on loopback", "[scenarios]") {
+TEST_CASE("A sweep under mpirun on one host notes once how to keep MPI on loopback",
+          "[scenarios]") {
   if (std::system("command -v mpirun > /dev/null 2>&1") != 0 ||
       std::system(fmt::format("'{}' sweep --help | grep -q -- --no-mpi", kMasnet).c_str()) != 0) {
     WARN("skipped: mpirun is absent (apt-get install openmpi-bin)");
     return;
   }
   Scratch s("mpi-note");
-  std::ofstream(s.dir / "sweep.yaml") << "base: " << kAcoustic
-                                      << "\nseeds: [1, 2]\nset: {duration: 0.2, output.snapshots: []}\n";
-  const std::string mpirun = "ASAN_OPTIONS=detect_leaks=0 mpirun -x ASAN_OPTIONS --oversubscribe --allow-run-as-root";
+  std::ofstream(s.dir / "sweep.yaml")
+      << "base: " << kAcoustic << "\nseeds: [1, 2]\nset: {duration: 0.2, output.snapshots: []}\n";
+  const std::string mpirun =
+      "ASAN_OPTIONS=detect_leaks=0 mpirun -x ASAN_OPTIONS --oversubscribe --allow-run-as-root";
   const std::string note = "masnet sweep: note: all 2 ranks run on this host";
-  const Outcome open = s.shell(fmt::format("{} -np 2 '{}' sweep sweep.yaml --out a", mpirun, kMasnet));
+  const Outcome open =
+      s.shell(fmt::format("{} -np 2 '{}' sweep sweep.yaml --out a", mpirun, kMasnet));
   INFO(open.output);
   CHECK(open.exit_code == 0);
   if (open.output.find("see docs/sweeps.md") == std::string::npos) {
@@ -281,7 +303,8 @@ TEST_CASE("A sweep under mpirun on one host notes once how to keep MPI on loopba
   }
   CHECK(masnet::test::count(open.output, note) == 1);
   const Outcome loopback = s.shell(fmt::format(
-      "{} --mca btl self,vader --mca oob_tcp_if_include lo -np 2 '{}' sweep sweep.yaml --out b", mpirun, kMasnet));
+      "{} --mca btl self,vader --mca oob_tcp_if_include lo -np 2 '{}' sweep sweep.yaml --out b",
+      mpirun, kMasnet));
   INFO(loopback.output);
   CHECK(loopback.exit_code == 0);
   CHECK(loopback.output.find(note) == std::string::npos);

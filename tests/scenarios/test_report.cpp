@@ -11,9 +11,9 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include "headless_chromium.hpp"
 #include "scenarios/figures.hpp"
 #include "scenarios/report.hpp"
-#include "headless_chromium.hpp"
 #include "short_run.hpp"
 #include "text_files.hpp"
 
@@ -167,12 +167,14 @@ TEST_CASE(
 
 TEST_CASE("The report opens in headless Chromium without errors and draws its charts",
           "[scenarios][chromium]") {
-  MASNET_REQUIRE_TOOL(fs::exists(masnet::test::kChromium), "/usr/bin/chromium (apt-get install chromium)");
+  MASNET_REQUIRE_TOOL(fs::exists(masnet::test::kChromium),
+                      "/usr/bin/chromium (apt-get install chromium)");
   MASNET_REQUIRE_TOOL(find_chartjs({}), "Chart.js (apt-get install libjs-chart.js)");
   const ShortRun& run = short_run();
   REQUIRE(run.status == 0);
   const fs::path shot = run.base / "screenshot.png";
-  const masnet::test::HeadlessPage opened = masnet::test::open_headless(run.dir / "report.html", run.base, shot);
+  const masnet::test::HeadlessPage opened =
+      masnet::test::open_headless(run.dir / "report.html", run.base, shot);
   const std::string& page = opened.dom;
   const std::string& messages = opened.log;
   INFO(messages.substr(0, 4000));

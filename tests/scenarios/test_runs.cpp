@@ -17,7 +17,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string source(const std::string& relative) { return std::string(MASNET_SOURCE_DIR) + "/" + relative; }
+std::string source(const std::string& relative) {
+  return std::string(MASNET_SOURCE_DIR) + "/" + relative;
+}
 
 ScenarioDef load(const std::string& relative, std::vector<std::string> overrides = {},
                  std::optional<std::uint64_t> seed = std::nullopt) {
@@ -41,7 +43,8 @@ std::map<std::string, std::vector<double>> read_csv(const fs::path& p) {
   std::getline(in, line);
   std::vector<std::string> names;
   std::stringstream header(line);
-  for (std::string n; std::getline(header, n, ',');) names.push_back(n);
+  for (std::string n; std::getline(header, n, ',');)
+    names.push_back(n);
   std::map<std::string, std::vector<double>> columns;
   while (std::getline(in, line)) {
     std::stringstream row(line);
@@ -53,7 +56,8 @@ std::map<std::string, std::vector<double>> read_csv(const fs::path& p) {
 }
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("masnet-test-runs-" + std::to_string(::getpid())) / name;
+  const fs::path dir =
+      fs::temp_directory_path() / ("masnet-test-runs-" + std::to_string(::getpid())) / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -67,7 +71,8 @@ nlohmann::json without_wall_time(nlohmann::json j) {
 }  // namespace
 
 TEST_CASE("the same scenario and seed give identical outputs apart from wall time", "[scenarios]") {
-  const ScenarioDef def = load("scenarios/paper/acoustic_tracking.yaml", {"duration=1", "output.snapshots=[0.5]"});
+  const ScenarioDef def =
+      load("scenarios/paper/acoustic_tracking.yaml", {"duration=1", "output.snapshots=[0.5]"});
   Run a(def), b(def);
   a.execute();
   b.execute();
@@ -76,10 +81,12 @@ TEST_CASE("the same scenario and seed give identical outputs apart from wall tim
   const fs::path da = fresh_dir("det-a"), db = fresh_dir("det-b");
   a.write_files(da.string());
   b.write_files(db.string());
-  for (const char* file : {"nodes.csv", "timeseries.csv", "trajectories.csv", "updates.csv", "snapshots.json"})
+  for (const char* file :
+       {"nodes.csv", "timeseries.csv", "trajectories.csv", "updates.csv", "snapshots.json"})
     CHECK(read_file(da / file) == read_file(db / file));
 
-  const ScenarioDef other = load("scenarios/paper/acoustic_tracking.yaml", {"duration=1", "output.snapshots=[0.5]"}, 2);
+  const ScenarioDef other =
+      load("scenarios/paper/acoustic_tracking.yaml", {"duration=1", "output.snapshots=[0.5]"}, 2);
   Run c(other);
   c.execute();
   CHECK(c.fingerprint() != a.fingerprint());
@@ -111,14 +118,16 @@ TEST_CASE("the reference scenarios keep their checked-in fingerprints", "[scenar
   }
 }
 
-TEST_CASE("runs with the same event stream but other radio outcomes have other traffic fingerprints",
-          "[scenarios]") {
+TEST_CASE(
+    "runs with the same event stream but other radio outcomes have other traffic fingerprints",
+    "[scenarios]") {
   // In the beacons example nobody handles a beacon: what the radio decides (who hears, who
   // loses a frame, whose battery is empty) leaves the event stream as it is.
   Run normal(load("scenarios/examples/beacons.yaml"));
   Run lossless(load("scenarios/examples/beacons.yaml", {"radio.loss=0"}));
   Run batteries_empty(load("scenarios/examples/beacons.yaml", {"radio.energy.battery=1e-12"}));
-  for (Run* run : {&normal, &lossless, &batteries_empty}) run->execute();
+  for (Run* run : {&normal, &lossless, &batteries_empty})
+    run->execute();
   CHECK(normal.summary()["messages"]["total"]["count"] == 8060);
   CHECK(batteries_empty.summary()["messages"]["total"]["count"] == 0);
   REQUIRE(lossless.fingerprint() == normal.fingerprint());
@@ -128,16 +137,19 @@ TEST_CASE("runs with the same event stream but other radio outcomes have other t
   CHECK(batteries_empty.traffic_fingerprint() != lossless.traffic_fingerprint());
 }
 
-TEST_CASE("the traffic fingerprint is the same for the same run, with or without the overhearing thread",
-          "[scenarios]") {
+TEST_CASE(
+    "the traffic fingerprint is the same for the same run, with or without the overhearing thread",
+    "[scenarios]") {
   // The acoustic scenario's sensor replies are unicasts booked in bulk: with the node threshold
   // at 0, the second thread books their overhearing.
-  const ScenarioDef def = load("scenarios/paper/acoustic_tracking.yaml", {"duration=1", "output.snapshots=[]"});
+  const ScenarioDef def =
+      load("scenarios/paper/acoustic_tracking.yaml", {"duration=1", "output.snapshots=[]"});
   ScenarioDef threaded = def;
   threaded.world.radio.overhearing_thread = true;
   threaded.world.radio.overhearing_thread_min_nodes = 0;
   Run once(def), again(def), with_thread(threaded);
-  for (Run* run : {&once, &again, &with_thread}) run->execute();
+  for (Run* run : {&once, &again, &with_thread})
+    run->execute();
   CHECK(again.traffic_fingerprint() == once.traffic_fingerprint());
   CHECK(with_thread.traffic_fingerprint() == once.traffic_fingerprint());
   CHECK(with_thread.fingerprint() == once.fingerprint());
@@ -178,13 +190,16 @@ TEST_CASE("the acoustic paper scenario splits the robots between the two targets
   CHECK(tx_bytes == s["messages"]["total"]["bytes"].get<double>());
   CHECK(energy == Approx(s["energy_j"]["total"].get<double>()).epsilon(1e-9));
   std::uint64_t by_type = 0;
-  for (const auto& [type, counts] : s["messages"]["by_type"].items()) by_type += counts["count"].get<std::uint64_t>();
+  for (const auto& [type, counts] : s["messages"]["by_type"].items())
+    by_type += counts["count"].get<std::uint64_t>();
   CHECK(by_type == s["messages"]["total"]["count"].get<std::uint64_t>());
-  WARN("acoustic: cell correctness " << s["protocol"]["cell_correctness"] << ", mean tracking error "
-                                     << s["tracking"]["mean_error"] << ", messages " << tx);
+  WARN("acoustic: cell correctness " << s["protocol"]["cell_correctness"]
+                                     << ", mean tracking error " << s["tracking"]["mean_error"]
+                                     << ", messages " << tx);
 }
 
-TEST_CASE("static coverage under the oracle with discrete Lloyd steps reaches a CVT", "[scenarios]") {
+TEST_CASE("static coverage under the oracle with discrete Lloyd steps reaches a CVT",
+          "[scenarios]") {
   Run run(load("scenarios/examples/static_coverage.yaml"));
   run.execute();
   const std::vector<Sample>& samples = run.recorder().samples();
@@ -197,10 +212,12 @@ TEST_CASE("static coverage under the oracle with discrete Lloyd steps reaches a 
   CHECK(samples.back().max_dist_to_centroid < 1e-3);
 }
 
-TEST_CASE("with control the pollution at 10 s is below the uncontrolled run, in both modes and "
-          "for both walls",
-          "[scenarios]") {
-  for (const char* file : {"scenarios/paper/pollution_control.yaml", "scenarios/paper/pollution_control_physical.yaml"})
+TEST_CASE(
+    "with control the pollution at 10 s is below the uncontrolled run, in both modes and "
+    "for both walls",
+    "[scenarios]") {
+  for (const char* file : {"scenarios/paper/pollution_control.yaml",
+                           "scenarios/paper/pollution_control_physical.yaml"})
     for (const char* boundary : {"dirichlet", "no_flux"}) {
       Run run(load(file, {std::string("field.diffusion.boundary=") + boundary}));
       run.execute();
@@ -210,17 +227,21 @@ TEST_CASE("with control the pollution at 10 s is below the uncontrolled run, in 
       CHECK(p["final"].get<double>() < p["baseline"]["final"].get<double>());
       CHECK(p["neutraliser_used"].get<double>() > 0.0);
       // The cap: no robot released more than max_rate · duration.
-      for (double used : p["neutraliser_per_robot"]) CHECK(used <= 2.0 * 10.0 + 1e-9);
+      for (double used : p["neutraliser_per_robot"])
+        CHECK(used <= 2.0 * 10.0 + 1e-9);
       WARN(file << " (" << boundary << "): with control final/peak " << p["final_over_peak"]
                 << (p["monotonic_after_peak"].get<bool>() ? " monotonic" : " not monotonic")
                 << "; without control " << p["baseline"]["final_over_peak"]
-                << (p["baseline"]["monotonic_after_peak"].get<bool>() ? " monotonic" : " not monotonic"));
+                << (p["baseline"]["monotonic_after_peak"].get<bool>() ? " monotonic"
+                                                                      : " not monotonic"));
     }
 }
 
 TEST_CASE("each protocol of the comparison set runs the acoustic scenario", "[scenarios]") {
-  for (const char* name : {"oracle", "radius_doubling_sensors", "radius_doubling_vertices", "fixed_radius", "gabriel"}) {
-    Run run(load(std::string("scenarios/examples/protocol_comparison/") + name + ".yaml", {"duration=0.5", "output.snapshots=[]"}));
+  for (const char* name : {"oracle", "radius_doubling_sensors", "radius_doubling_vertices",
+                           "fixed_radius", "gabriel"}) {
+    Run run(load(std::string("scenarios/examples/protocol_comparison/") + name + ".yaml",
+                 {"duration=0.5", "output.snapshots=[]"}));
     run.execute();
     const nlohmann::json s = run.summary();
     INFO(name);

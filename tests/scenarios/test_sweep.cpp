@@ -16,10 +16,10 @@
 #include <fmt/format.h>
 #include <sqlite3.h>
 
+#include "headless_chromium.hpp"
 #include "scenarios/sweep.hpp"
 #include "scenarios/sweep_command.hpp"
 #include "scenarios/sweep_report.hpp"
-#include "headless_chromium.hpp"
 #include "text_files.hpp"
 
 using namespace masnet::scenarios;
@@ -523,8 +523,9 @@ TEST_CASE(
   }
 }
 
-TEST_CASE("masnet sweep: same runs table with --jobs 1, --jobs 2 and mpirun -np 2 - and its exit codes",
-          "[scenarios]") {
+TEST_CASE(
+    "masnet sweep: same runs table with --jobs 1, --jobs 2 and mpirun -np 2 - and its exit codes",
+    "[scenarios]") {
   if (!masnet_has_sweep()) {
     WARN("skipped: '"
          << kMasnet
@@ -582,10 +583,12 @@ TEST_CASE("masnet sweep: same runs table with --jobs 1, --jobs 2 and mpirun -np 
     const Outcome mpi =
         // Under the asan-ubsan preset, Open MPI's unloaded plugins leave leaks LeakSanitizer
         // cannot attribute (and so cannot suppress): leak checking is off for the ranks only.
-        shell("ASAN_OPTIONS=detect_leaks=0 mpirun -x ASAN_OPTIONS --oversubscribe --allow-run-as-root -np 2 " +
-                  masnet + " sweep '" +
-                  file.string() + "' --quiet --out '" + (base / "mpi").string() + "'",
-              base / "mpi.log");
+        shell(
+            "ASAN_OPTIONS=detect_leaks=0 mpirun -x ASAN_OPTIONS --oversubscribe "
+            "--allow-run-as-root -np 2 " +
+                masnet + " sweep '" + file.string() + "' --quiet --out '" +
+                (base / "mpi").string() + "'",
+            base / "mpi.log");
     INFO(mpi.output);
     CHECK(mpi.exit_code == 6);
     CHECK(runs_table(base / "mpi") == j1);
@@ -596,7 +599,8 @@ TEST_CASE("masnet sweep: same runs table with --jobs 1, --jobs 2 and mpirun -np 
 
 TEST_CASE("The sweep report draws its charts in headless Chromium without script errors",
           "[scenarios][chromium]") {
-  MASNET_REQUIRE_TOOL(fs::exists(masnet::test::kChromium), "/usr/bin/chromium (apt-get install chromium)");
+  MASNET_REQUIRE_TOOL(fs::exists(masnet::test::kChromium),
+                      "/usr/bin/chromium (apt-get install chromium)");
   // Two factors, one numeric and one categorical: 2 axes × 2 metrics = 4 charts.
   SweepReportInput in;
   in.title = "chromium";

@@ -21,9 +21,9 @@ namespace fs = std::filesystem;
 
 TEST_CASE("Student t quantiles match published values at every degree of freedom", "[scenarios]") {
   // Upper 97.5 % points, to the digits the tables give.
-  const std::map<std::size_t, double> published = {{1, 12.7062047}, {2, 4.30265273},  {4, 2.77644511},
-                                                   {9, 2.26215716}, {30, 2.04227246}, {31, 2.03951345},
-                                                   {60, 2.00029782}, {100, 1.98397152}, {1000, 1.96233908}};
+  const std::map<std::size_t, double> published = {
+      {1, 12.7062047},  {2, 4.30265273},  {4, 2.77644511},   {9, 2.26215716},   {30, 2.04227246},
+      {31, 2.03951345}, {60, 2.00029782}, {100, 1.98397152}, {1000, 1.96233908}};
   for (const auto& [df, t] : published) {
     INFO("df = " << df);
     CHECK(student_t_975(df) == Approx(t).epsilon(1e-8));
@@ -63,7 +63,8 @@ struct Db {
     while (sqlite3_step(s) == SQLITE_ROW) {
       std::vector<double> values;
       for (int c = 0; c < sqlite3_column_count(s); ++c)
-        values.push_back(sqlite3_column_type(s, c) == SQLITE_NULL ? NAN : sqlite3_column_double(s, c));
+        values.push_back(sqlite3_column_type(s, c) == SQLITE_NULL ? NAN
+                                                                  : sqlite3_column_double(s, c));
       out.emplace_back(reinterpret_cast<const char*>(sqlite3_column_text(s, 0)), values);
     }
     sqlite3_finalize(s);
@@ -73,13 +74,16 @@ struct Db {
 
 }  // namespace
 
-TEST_CASE("A sweep's statistics table holds each configuration's mean, sd and interval", "[scenarios]") {
-  const fs::path base = fs::temp_directory_path() / ("masnet-test-statistics-" + std::to_string(::getpid()));
+TEST_CASE("A sweep's statistics table holds each configuration's mean, sd and interval",
+          "[scenarios]") {
+  const fs::path base =
+      fs::temp_directory_path() / ("masnet-test-statistics-" + std::to_string(::getpid()));
   fs::remove_all(base);
   fs::create_directories(base);
   std::ofstream(base / "sweep.yaml")
       << "base: " << MASNET_SOURCE_DIR << "/scenarios/paper/acoustic_tracking.yaml\nseeds: 3\n"
-      << "set: {duration: 0.2, sensors.nx: 20, sensors.ny: 20, output.snapshots: [], output.updates: false}\n"
+      << "set: {duration: 0.2, sensors.nx: 20, sensors.ny: 20, output.snapshots: [], "
+         "output.updates: false}\n"
       << "vary:\n  protocol.kind: [radius_doubling, fixed_radius]\n";
   SweepLoad loaded = load_sweep((base / "sweep.yaml").string());
   REQUIRE(loaded.sweep);
@@ -91,11 +95,14 @@ TEST_CASE("A sweep's statistics table holds each configuration's mean, sd and in
   const Db db(base / "out" / "results.sqlite");
   // Per run, recomputed here: messages and energy per update.
   const auto runs = db.rows(
-      "SELECT r.label, m.value, e.value / u.value FROM runs r JOIN metrics m ON m.run_id = r.run_id AND m.key = "
-      "'messages.total.count' JOIN metrics e ON e.run_id = r.run_id AND e.key = 'energy_j.total' JOIN metrics u "
+      "SELECT r.label, m.value, e.value / u.value FROM runs r JOIN metrics m ON m.run_id = "
+      "r.run_id AND m.key = "
+      "'messages.total.count' JOIN metrics e ON e.run_id = r.run_id AND e.key = 'energy_j.total' "
+      "JOIN metrics u "
       "ON u.run_id = r.run_id AND u.key = 'protocol.updates' ORDER BY r.run_index");
   REQUIRE(runs.size() == 6);
-  for (const char* configuration : {"protocol.kind=radius_doubling", "protocol.kind=fixed_radius"}) {
+  for (const char* configuration :
+       {"protocol.kind=radius_doubling", "protocol.kind=fixed_radius"}) {
     INFO(configuration);
     std::vector<double> messages, energy_per_update;
     for (const auto& [label, values] : runs)
@@ -107,14 +114,16 @@ TEST_CASE("A sweep's statistics table holds each configuration's mean, sd and in
     for (const auto& [metric, values] : {std::pair{"messages.total.count", messages},
                                          std::pair{"energy_per_update_j", energy_per_update}}) {
       INFO(metric);
-      const auto stats = db.rows(std::string("SELECT configuration, n, mean, sd, ci95_low, ci95_high FROM "
-                                             "statistics WHERE configuration = '") +
-                                 configuration + "' AND metric = '" + metric + "'");
+      const auto stats =
+          db.rows(std::string("SELECT configuration, n, mean, sd, ci95_low, ci95_high FROM "
+                              "statistics WHERE configuration = '") +
+                  configuration + "' AND metric = '" + metric + "'");
       REQUIRE(stats.size() == 1);
       const std::vector<double>& s = stats[0].second;
       const double mean = (values[0] + values[1] + values[2]) / 3.0;
       double squares = 0;
-      for (double v : values) squares += (v - mean) * (v - mean);
+      for (double v : values)
+        squares += (v - mean) * (v - mean);
       const double sd = std::sqrt(squares / 2.0), half = 4.30265273 * sd / std::sqrt(3.0);
       CHECK(s[1] == 3);
       CHECK(s[2] == Approx(mean));
@@ -125,7 +134,8 @@ TEST_CASE("A sweep's statistics table holds each configuration's mean, sd and in
   }
   // The question the table exists for, in one query.
   const auto cheapest = db.rows(
-      "SELECT configuration, mean, ci95_low, ci95_high FROM statistics WHERE metric = 'energy_per_update_j' "
+      "SELECT configuration, mean, ci95_low, ci95_high FROM statistics WHERE metric = "
+      "'energy_per_update_j' "
       "ORDER BY mean LIMIT 1");
   REQUIRE(cheapest.size() == 1);
   CHECK(cheapest[0].second[2] <= cheapest[0].second[1]);

@@ -17,7 +17,9 @@ inline std::string slurp(const std::filesystem::path& path) {
 /// How often `what` occurs in `text`, without overlaps.
 inline std::size_t count(const std::string& text, const std::string& what) {
   std::size_t n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
+  for (std::size_t at = text.find(what); at != std::string::npos;
+       at = text.find(what, at + what.size()))
+    ++n;
   return n;
 }
 

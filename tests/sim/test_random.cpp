@@ -10,7 +10,8 @@ using namespace masnet::sim;
 TEST_CASE("a stream is a pure function of its key", "[sim]") {
   auto a = RandomStream::keyed(42, node_id(3), purpose("x"));
   auto b = RandomStream::keyed(42, node_id(3), purpose("x"));
-  for (int i = 0; i < 100; ++i) CHECK(a.next_u64() == b.next_u64());
+  for (int i = 0; i < 100; ++i)
+    CHECK(a.next_u64() == b.next_u64());
 }
 
 TEST_CASE("streams differ by seed, node and purpose", "[sim]") {
@@ -37,7 +38,12 @@ TEST_CASE("xoshiro256** from splitmix64 seeding gives the reference sequence", "
   for (int i = 0; i < 1000; ++i) {
     const std::uint64_t expected = rotl(s[1] * 5, 7) * 9;
     const std::uint64_t t = s[1] << 17;
-    s[2] ^= s[0]; s[3] ^= s[1]; s[1] ^= s[2]; s[0] ^= s[3]; s[2] ^= t; s[3] = rotl(s[3], 45);
+    s[2] ^= s[0];
+    s[3] ^= s[1];
+    s[1] ^= s[2];
+    s[0] ^= s[3];
+    s[2] ^= t;
+    s[3] = rotl(s[3], 45);
     REQUIRE(stream.next_u64() == expected);
   }
 }
@@ -62,12 +68,14 @@ TEST_CASE("distributions have the right moments", "[sim]") {
   CHECK(sum_e / n == Approx(2.0).margin(0.03));
   CHECK(sum_n / n == Approx(1.0).margin(0.03));
   CHECK(std::sqrt(sum_n2 / n) == Approx(3.0).margin(0.03));
-  for (auto c : counts) CHECK(static_cast<double>(c) == Approx(n / 7.0).epsilon(0.03));
+  for (auto c : counts)
+    CHECK(static_cast<double>(c) == Approx(n / 7.0).epsilon(0.03));
 }
 
 TEST_CASE("keyed draws are uniform and depend on every key part", "[sim]") {
   double sum = 0;
-  for (std::uint64_t i = 0; i < 100000; ++i) sum += keyed_uniform01(9, 1, 2, 3, i);
+  for (std::uint64_t i = 0; i < 100000; ++i)
+    sum += keyed_uniform01(9, 1, 2, 3, i);
   CHECK(sum / 100000 == Approx(0.5).margin(0.005));
   CHECK(keyed_u64(9, 1, 2, 3, 4) != keyed_u64(9, 1, 2, 4, 3));
   CHECK(keyed_u64(9, 1, 2, 3, 4) != keyed_u64(8, 1, 2, 3, 4));

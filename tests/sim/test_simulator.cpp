@@ -10,10 +10,12 @@ using namespace masnet::sim;
 TEST_CASE("equal-time events run in the order they were scheduled", "[sim]") {
   Simulator sim;
   std::vector<int> order;
-  for (int i = 0; i < 100; ++i) sim.at(time_at(1.0), [&order, i] { order.push_back(i); });
+  for (int i = 0; i < 100; ++i)
+    sim.at(time_at(1.0), [&order, i] { order.push_back(i); });
   sim.run();
   REQUIRE(order.size() == 100);
-  for (int i = 0; i < 100; ++i) CHECK(order[i] == i);
+  for (int i = 0; i < 100; ++i)
+    CHECK(order[i] == i);
 }
 
 TEST_CASE("events run in time order and the clock shows each event's time", "[sim]") {
@@ -117,7 +119,8 @@ TEST_CASE("seconds convert to integer nanoseconds by rounding", "[sim]") {
 TEST_CASE("the fingerprint depends on the times and order of executed events", "[sim]") {
   auto run = [](std::vector<double> times) {
     Simulator sim;
-    for (double t : times) sim.at(time_at(t), [] {});
+    for (double t : times)
+      sim.at(time_at(t), [] {});
     sim.run();
     return sim.fingerprint().value();
   };
@@ -140,7 +143,8 @@ TEST_CASE("many interleaved schedules and cancels keep the heap order", "[sim]")
     }));
   }
   int cancelled = 0;
-  for (std::size_t i = 0; i < ids.size(); i += 3) cancelled += sim.cancel(ids[i]) ? 1 : 0;
+  for (std::size_t i = 0; i < ids.size(); i += 3)
+    cancelled += sim.cancel(ids[i]) ? 1 : 0;
   sim.run();
   CHECK(last_seq_time_violations == 0);
   CHECK(sim.events_run() == 20000 - static_cast<std::uint64_t>(cancelled));
