@@ -154,7 +154,7 @@ void VoronoiProtocol::decide() {
     finish_update(max_vertex_distance(cell_.polygon, position_) > radius_m_);
     return;
   }
-  // 3) d_i: the farthest sensor in V_i (the seed) or the farthest point of V_i = Ω ∩ B(p_i, R_i)
+  // 3) d_i: the farthest sensor in V_i (the paper) or the farthest point of V_i = Ω ∩ B(p_i, R_i)
   //    ∩ bisectors (Cortés), which is min(R_i, farthest vertex of the unbounded-by-disk cell).
   const double farthest_m =
       params_.criterion == StopCriterion::sensors

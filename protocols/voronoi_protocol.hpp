@@ -18,9 +18,26 @@
 namespace masnet::protocols {
 
 enum class ProtocolKind { none, radius_doubling, oracle, fixed_radius, gabriel };
-/// How R grows when the stop rule fails: R ← 2·d (the seed) or R ← 2·R (Cortés).
+
+/// The kind's name as a scenario file spells it (`protocol.kind`).
+constexpr const char* protocol_kind_name(ProtocolKind kind) {
+  switch (kind) {
+    case ProtocolKind::none:
+      return "none";
+    case ProtocolKind::radius_doubling:
+      return "radius_doubling";
+    case ProtocolKind::oracle:
+      return "oracle";
+    case ProtocolKind::fixed_radius:
+      return "fixed_radius";
+    case ProtocolKind::gabriel:
+      return "gabriel";
+  }
+  return "?";
+}
+/// How R grows when the stop rule fails: R ← 2·d (the paper) or R ← 2·R (Cortés).
 enum class Growth { to_2d, doubling };
-/// What d is: the farthest reading sensor in V (the seed) or the farthest vertex of V (Cortés,
+/// What d is: the farthest reading sensor in V (the paper) or the farthest vertex of V (Cortés,
 /// which guarantees the exact cell).
 enum class StopCriterion { sensors, vertices };
 

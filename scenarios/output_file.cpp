@@ -21,39 +21,34 @@ OutputFile::~OutputFile() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-void OutputFile::write(std::string_view bytes) {
-  if (buffer_.size() + bytes.size() > kChunkBytes) flush();
-  if (bytes.size() >= kChunkBytes) {
-    // Large pieces go straight to the file: no copy into the buffer first.
-    const char* p = bytes.data();
-    std::size_t left = bytes.size();
-    while (left > 0) {
-      const ssize_t n = ::write(fd_, p, left);
-      if (n < 0) {
-        if (errno == EINTR) continue;
-        throw_output_error(path_, errno);
-      }
-      p += n;
-      left -= static_cast<std::size_t>(n);
-    }
-    return;
-  }
-  buffer_.append(bytes.data(), bytes.data() + bytes.size());
-}
-
-void OutputFile::flush() {
-  const char* p = buffer_.data();
-  std::size_t left = buffer_.size();
-  buffer_.clear();
+namespace {
+// write(2) until all of it is written (a write may be partial, or interrupted by a signal).
+void write_all(int fd, const char* p, std::size_t left, const std::filesystem::path& path) {
   while (left > 0) {
-    const ssize_t n = ::write(fd_, p, left);
+    const ssize_t n = ::write(fd, p, left);
     if (n < 0) {
       if (errno == EINTR) continue;
-      throw_output_error(path_, errno);
+      throw_output_error(path, errno);
     }
     p += n;
     left -= static_cast<std::size_t>(n);
   }
+}
+}  // namespace
+
+void OutputFile::write(std::string_view bytes) {
+  if (buffer_.size() + bytes.size() > kChunkBytes) flush();
+  // Large pieces go straight to the file: no copy into the buffer first.
+  if (bytes.size() >= kChunkBytes)
+    write_all(fd_, bytes.data(), bytes.size(), path_);
+  else
+    buffer_.append(bytes.data(), bytes.data() + bytes.size());
+}
+
+void OutputFile::flush() {
+  const std::size_t size = buffer_.size();
+  buffer_.clear();  // a failed write throws: the buffer is not written twice
+  write_all(fd_, buffer_.data(), size, path_);
 }
 
 void OutputFile::close() {

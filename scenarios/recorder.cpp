@@ -17,22 +17,6 @@ namespace {
 
 constexpr std::size_t kWriteChunkBytes = std::size_t{1} << 16;  // buffered rows per write
 
-std::string_view protocol_name(protocols::ProtocolKind kind) {
-  switch (kind) {
-    case protocols::ProtocolKind::none:
-      return "none";
-    case protocols::ProtocolKind::radius_doubling:
-      return "radius_doubling";
-    case protocols::ProtocolKind::oracle:
-      return "oracle";
-    case protocols::ProtocolKind::fixed_radius:
-      return "fixed_radius";
-    case protocols::ProtocolKind::gabriel:
-      return "gabriel";
-  }
-  return "?";
-}
-
 nlohmann::json point(const Vec2& p) {
   return nlohmann::json::array({p.x(), p.y()});
 }
@@ -494,7 +478,7 @@ nlohmann::json Recorder::summary_metrics() const {
 
   // Protocol statistics over all updates.
   nlohmann::json p;
-  p["name"] = protocol_name(def_.world.protocol.kind);
+  p["name"] = protocols::protocol_kind_name(def_.world.protocol.kind);
   const double n_updates = static_cast<double>(updates_.size());
   double rounds = 0, latency = 0, latency_max = 0, radius = 0;
   std::uint32_t rounds_max = 0;

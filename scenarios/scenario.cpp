@@ -313,22 +313,6 @@ net::RadioParams read_radio(Section s) {
   return r;
 }
 
-const char* protocol_kind_name(protocols::ProtocolKind kind) {
-  switch (kind) {
-    case protocols::ProtocolKind::none:
-      return "none";
-    case protocols::ProtocolKind::radius_doubling:
-      return "radius_doubling";
-    case protocols::ProtocolKind::oracle:
-      return "oracle";
-    case protocols::ProtocolKind::fixed_radius:
-      return "fixed_radius";
-    case protocols::ProtocolKind::gabriel:
-      return "gabriel";
-  }
-  return "?";
-}
-
 protocols::ProtocolParams read_protocol(Section s) {
   using protocols::ProtocolKind;
   protocols::ProtocolParams p;
@@ -362,7 +346,7 @@ protocols::ProtocolParams read_protocol(Section s) {
                            const char* which) {
     if (!s.has(key) || std::find(kinds.begin(), kinds.end(), p.kind) != kinds.end()) return;
     s.warn_at(key, std::string("applies to protocol kind ") + which + ", not " +
-                       std::string(protocol_kind_name(p.kind)) + ": it is ignored");
+                       std::string(protocols::protocol_kind_name(p.kind)) + ": it is ignored");
   };
   applies("period", {K::radius_doubling, K::oracle, K::fixed_radius, K::gabriel},
           "radius_doubling, oracle, "

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "loader_helpers.hpp"
 #include "scenarios/input.hpp"
 #include "scenarios/scenario.hpp"
 #include "scenarios/sweep.hpp"
@@ -26,24 +27,8 @@ namespace {
 const std::string kMasnet = MASNET_BINARY_DIR "/scenarios/masnet";
 const std::string kScenarios = MASNET_SOURCE_DIR "/scenarios";
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "masnet-limits-XXXXXX").string();
-    if (mkdtemp(pattern.data())) path = pattern;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    if (!path.empty()) fs::remove_all(path, ec);
-  }
-};
-
-std::vector<std::string> texts(const std::vector<Diagnostic>& diagnostics) {
-  std::vector<std::string> out;
-  for (const Diagnostic& d : diagnostics)
-    out.push_back(d.text());
-  return out;
-}
+using masnet::test::texts;
+using TempDir = masnet::test::TempDir;
 
 std::vector<std::string> problems(const std::string& text,
                                   const std::vector<std::string>& sets = {}) {

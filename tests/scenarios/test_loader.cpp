@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "loader_helpers.hpp"
 #include "scenarios/scenario.hpp"
 
 namespace fs = std::filesystem;
@@ -303,25 +304,8 @@ std::string joined(const std::vector<std::string>& lines, const std::string& dir
   return text;
 }
 
-// A fresh, empty directory under the system's temporary folder, removed at scope exit.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "masnet-loader-XXXXXX").string();
-    if (mkdtemp(pattern.data())) path = pattern;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    if (!path.empty()) fs::remove_all(path, ec);
-  }
-};
-
-std::vector<std::string> texts(const std::vector<Diagnostic>& diagnostics) {
-  std::vector<std::string> out;
-  for (const Diagnostic& d : diagnostics)
-    out.push_back(d.text());
-  return out;
-}
+using masnet::test::texts;
+using TempDir = masnet::test::TempDir;
 
 }  // namespace
 
