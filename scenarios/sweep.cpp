@@ -1374,18 +1374,18 @@ SweepCounts SweepSession::finish() {
 
 SweepCounts run_sweep_locally(const SweepDef& sweep, const SweepOptions& options,
                               const std::function<void(const RunResult&)>& on_result) {
-  SweepSession session(sweep, expand_sweep(sweep), options);
+  SweepSession results(sweep, expand_sweep(sweep), options);
   {
-    SweepWorkers workers(sweep, session.runs(), options.out_dir, options.jobs);
-    for (std::size_t index : session.pending())
+    SweepWorkers workers(sweep, results.runs(), options.out_dir, options.jobs);
+    for (std::size_t index : results.pending())
       workers.submit(index);
     while (workers.in_flight() > 0)
       if (auto r = workers.next(std::chrono::milliseconds(500))) {
-        session.record(*r);
+        results.record(*r);
         if (on_result) on_result(*r);
       }
   }
-  return session.finish();
+  return results.finish();
 }
 
 }  // namespace masnet::scenarios

@@ -1,6 +1,9 @@
 #pragma once
 // Helpers the loader tests share: a scratch directory and diagnostics as text lines.
 #include <stdlib.h>
+#include <sys/wait.h>
+
+#include <cstdio>
 
 #include <filesystem>
 #include <string>
@@ -33,6 +36,26 @@ inline std::vector<std::string> texts(const std::vector<scenarios::Diagnostic>& 
   for (const scenarios::Diagnostic& d : diagnostics)
     out.push_back(d.text());
   return out;
+}
+
+/// A command's exit code and what it printed on its standard output.
+struct Outcome {
+  int exit_code = -1;
+  std::string output;
+};
+
+/// Runs `command` with the shell and collects its standard output.
+inline Outcome shell(const std::string& command) {
+  Outcome result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return result;
+  char buffer[4096];
+  std::size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0)
+    result.output.append(buffer, n);
+  const int status = pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
 }
 
 }  // namespace masnet::test

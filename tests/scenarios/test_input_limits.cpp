@@ -35,23 +35,11 @@ std::vector<std::string> problems(const std::string& text,
   return texts(load_scenario_text(text, "inline.yaml", sets).diagnostics);
 }
 
-struct Outcome {
-  int exit_code = -1;
-  std::string output;
-};
+using masnet::test::Outcome;
 
-// `masnet ARGS` with its standard error captured; `timeout` guards against a blocking open.
+// masnet's standard error (its messages), with a time limit.
 Outcome run_masnet(const std::string& args) {
-  Outcome result;
-  FILE* pipe = popen(("timeout 20 " + kMasnet + " " + args + " 2>&1 >/dev/null").c_str(), "r");
-  if (!pipe) return result;
-  char buffer[4096];
-  std::size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0)
-    result.output.append(buffer, n);
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
+  return masnet::test::shell("timeout 20 " + kMasnet + " " + args + " 2>&1 >/dev/null");
 }
 
 }  // namespace

@@ -265,25 +265,8 @@ std::string quoted(const std::string& text) {
   return out + "'";
 }
 
-struct Outcome {
-  int exit_code = -1;
-  std::string output;
-};
-
-// Runs `command` with sh; `output` is what it wrote on the streams that `command` redirects to
-// the pipe.
-Outcome shell(const std::string& command) {
-  Outcome result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  char buffer[4096];
-  std::size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0)
-    result.output.append(buffer, n);
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+using masnet::test::Outcome;
+using masnet::test::shell;
 
 // Only the standard error of `masnet ARGS`, run in `directory`.
 Outcome masnet_stderr(const std::string& directory, const std::string& args) {
