@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 
 #include "sim/random.hpp"
 
@@ -18,14 +19,18 @@ std::uint64_t sensor_key(std::size_t i) {
   return (std::uint64_t{2} << 32) | i;
 }
 
-constexpr std::uint32_t bit(net::MessageType t) {
-  return 1u << static_cast<unsigned>(t);
+std::uint32_t interest_mask(const std::vector<net::MessageType>& types) {
+  std::uint32_t mask = 0;
+  for (net::MessageType t : types)
+    mask |= 1u << static_cast<unsigned>(t);
+  return mask;
 }
-constexpr std::uint32_t kRobotInterest =
-    bit(net::MessageType::discover) | bit(net::MessageType::neighbor) |
-    bit(net::MessageType::reading) | bit(net::MessageType::report);
-constexpr std::uint32_t kSensorInterest =
-    bit(net::MessageType::position) | bit(net::MessageType::sense);
+
+const protocols::ProtocolDefinition& definition_of(const std::string& kind) {
+  const protocols::ProtocolDefinition* definition = protocols::find_protocol(kind);
+  if (!definition) throw std::invalid_argument("no protocol named '" + kind + "'");
+  return *definition;
+}
 
 double diameter(const protocols::ConvexPolygon& polygon) {
   double d = 0.0;
@@ -41,14 +46,22 @@ double diameter(const protocols::ConvexPolygon& polygon) {
 
 class World::RobotAgent final : public protocols::RobotHost {
  public:
-  RobotAgent(World& world, std::size_t index, const Vec2& start, double phase_s)
+  RobotAgent(World& world, std::size_t index, const Vec2& start)
       : world_(world),
         index_(index),
-        segment_(world.def_.motion, 0.0, MotionState{start, Vec2{0, 0}}, start),
-        protocol_(*this, world.def_.protocol, world.protocol_context_, phase_s, &world.log_) {}
+        segment_(world.def_.motion, 0.0, MotionState{start, Vec2{0, 0}}, start) {
+    // The protocol's own stream: its first draw phases the built-ins' updates.
+    auto random =
+        sim::RandomStream::keyed(world.def_.seed, robot_key(index), sim::purpose("protocol.phase"));
+    const protocols::RobotSetup setup{*this,           index,
+                                      world.protocol_context_, world.def_.protocol.params,
+                                      random,          &world.log_};
+    protocol_ = world.truthful_factory_ ? (*world.truthful_factory_)(setup, world)
+                                        : world.definition_->make_robot(setup);
+  }
 
-  protocols::VoronoiProtocol& protocol() { return protocol_; }
-  const protocols::VoronoiProtocol& protocol() const { return protocol_; }
+  protocols::RobotProtocol& protocol() { return *protocol_; }
+  const protocols::RobotProtocol& protocol() const { return *protocol_; }
   const MotionSegment& segment() const { return segment_; }
 
   /// State now; cached per simulated instant (many frames are sent at the same time).
@@ -74,8 +87,9 @@ class World::RobotAgent final : public protocols::RobotHost {
     const std::uint32_t bytes = net::size_bytes(payload, world_.radio_.params().sizes);
     return world_.radio_.unicast(id(), to, std::move(payload)) ? bytes : 0;
   }
+  const net::MessageSizes& message_sizes() const override { return world_.radio_.params().sizes; }
   protocols::TimerHandle set_timer(sim::Duration delay, std::uint32_t kind) override {
-    return world_.simulator_.after(delay, [this, kind] { protocol_.on_timer(kind); });
+    return world_.simulator_.after(delay, [this, kind] { protocol_->on_timer(kind); });
   }
   void cancel_timer(protocols::TimerHandle timer) override { world_.simulator_.cancel(timer); }
   void set_target(const Vec2& target) override {
@@ -97,11 +111,6 @@ class World::RobotAgent final : public protocols::RobotHost {
     if (world_.uniform_sensor_area_ > 0.0) return world_.uniform_sensor_area_;
     return world_.def_.sensors[sim::index(sensor) - world_.robots_.size()].area;
   }
-  protocols::RobotCell true_cell() override { return world_.oracle_cell(index_); }
-  std::uint32_t read_sensors_in(const protocols::ConvexPolygon& cell,
-                                protocols::CentroidAccumulator& accumulator) override {
-    return world_.read_sensors_in(cell, accumulator);
-  }
 
  private:
   World& world_;
@@ -112,7 +121,7 @@ class World::RobotAgent final : public protocols::RobotHost {
   mutable MotionState cached_;
   std::size_t index_;
   MotionSegment segment_;
-  protocols::VoronoiProtocol protocol_;
+  std::unique_ptr<protocols::RobotProtocol> protocol_;
 };
 
 // ---- A sensor's host: made on the stack per event; the state lives in arrays ---------------
@@ -120,14 +129,21 @@ class World::RobotAgent final : public protocols::RobotHost {
 class World::SensorContext final : public protocols::SensorHost {
  public:
   SensorContext(World& world, std::size_t sensor) : world_(world), sensor_(sensor) {}
+  sim::Time now() const override { return world_.simulator_.now(); }
   NodeId id() const override { return world_.sensor_node(sensor_); }
+  std::size_t index() const override { return sensor_; }
   // From the radio's record of the node, which the reply's transmission reads anyway.
   Vec2 position() const override { return world_.radio_.position(id()); }
   double reading() override { return world_.sensor_reading(sensor_, position()); }
+  std::uint32_t broadcast(double range, net::Payload payload) override {
+    const std::uint32_t bytes = net::size_bytes(payload, world_.radio_.params().sizes);
+    return world_.radio_.broadcast(id(), range, std::move(payload)) ? bytes : 0;
+  }
   std::uint32_t unicast(NodeId to, net::Payload payload) override {
     const std::uint32_t bytes = net::size_bytes(payload, world_.radio_.params().sizes);
     return world_.radio_.unicast(id(), to, std::move(payload)) ? bytes : 0;
   }
+  const net::MessageSizes& message_sizes() const override { return world_.radio_.params().sizes; }
   void set_timer(sim::Duration delay, std::uint32_t kind) override {
     World* world = &world_;
     const std::size_t sensor = sensor_;
@@ -147,24 +163,27 @@ World::World(sim::Simulator& simulator, const WorldDef& def)
       def_(def),
       radio_(simulator, def.radio, def.seed),
       field_(def.field),
-      protocol_context_{def.domain, def.scaling, def.radio.max_range},
-      // Sensors listen for POSITIONs one reply timeout before they report (§III-B step 2-3).
-      sensor_protocol_(def.protocol.reply_timeout_s, &log_) {
+      protocol_context_{def.domain, def.scaling, def.radio.max_range, def.robots.size(),
+                        def.sensors.size()},
+      definition_(&definition_of(def.protocol.kind)),
+      truthful_factory_(protocols::ground_truth_factory(def.protocol.kind)),
+      sensor_protocol_(definition_->make_sensor(
+          protocols::SensorSetup{protocol_context_, def_.protocol.params, &log_})) {
   radio_.set_listener(this);
   radio_.set_mobile_positions(this);
+  const std::uint32_t robot_interest = interest_mask(definition_->robots_hear);
+  const std::uint32_t sensor_interest = interest_mask(definition_->sensors_hear);
   robots_.reserve(def_.robots.size());
   for (std::size_t i = 0; i < def_.robots.size(); ++i) {
-    auto phase = sim::RandomStream::keyed(def_.seed, robot_key(i), sim::purpose("protocol.phase"));
-    robots_.push_back(std::make_unique<RobotAgent>(*this, i, def_.robots[i],
-                                                   phase.uniform(0.0, def_.protocol.period_s)));
+    robots_.push_back(std::make_unique<RobotAgent>(*this, i, def_.robots[i]));
     radio_.add_mobile_node(robot_node(i), robot_key(i));
-    radio_.set_interest(robot_node(i), kRobotInterest);
+    radio_.set_interest(robot_node(i), robot_interest);
   }
   std::vector<Vec2> positions;
   std::vector<NodeId> ids;
   for (std::size_t s = 0; s < def_.sensors.size(); ++s) {
     radio_.add_static_node(sensor_node(s), def_.sensors[s].position, sensor_key(s));
-    radio_.set_interest(sensor_node(s), kSensorInterest);
+    radio_.set_interest(sensor_node(s), sensor_interest);
     positions.push_back(def_.sensors[s].position);
     ids.push_back(sensor_node(s));
   }
@@ -175,7 +194,6 @@ World::World(sim::Simulator& simulator, const WorldDef& def)
     for (const SensorDef& s : def_.sensors)
       if (s.area != uniform_sensor_area_) uniform_sensor_area_ = 0.0;
   }
-  sensor_states_.assign(def_.sensors.size(), protocols::SensorState{});
   sensor_read_counts_.assign(def_.sensors.size(), 0);
   if (def_.field.kind == FieldKind::diffusion)
     diffusion_ = std::make_unique<DiffusionField>(def_.field.diffusion);
@@ -218,7 +236,7 @@ MotionState World::robot_state(std::size_t robot) const {
 Vec2 World::robot_target(std::size_t robot) const {
   return robots_[robot]->segment().target();
 }
-const protocols::VoronoiProtocol& World::robot_protocol(std::size_t robot) const {
+const protocols::RobotProtocol& World::robot_protocol(std::size_t robot) const {
   return robots_[robot]->protocol();
 }
 
@@ -271,7 +289,7 @@ double World::spray_rate(std::size_t robot) const {
   const DispenserDef& d = def_.dispenser;
   if (d.payload > 0 && neutraliser_used_[robot] >= d.payload) return 0.0;  // tank empty
   const Vec2 p = robots_[robot]->state().position;
-  const protocols::VoronoiProtocol& protocol = robots_[robot]->protocol();
+  const protocols::RobotProtocol& protocol = robots_[robot]->protocol();
   double sum = 0.0;
   std::size_t count = 0;
   if (d.readings == SprayReadings::live) {
@@ -476,12 +494,12 @@ void World::on_frame(NodeId receiver, const net::Frame& frame) {
     return;
   }
   SensorContext context(*this, i - robots_.size());
-  sensor_protocol_.on_frame(context, sensor_states_[i - robots_.size()], frame);
+  sensor_protocol_->on_frame(context, frame);
 }
 
 void World::sensor_timer(std::size_t sensor, std::uint32_t kind) {
   SensorContext context(*this, sensor);
-  sensor_protocol_.on_timer(context, sensor_states_[sensor], kind);
+  sensor_protocol_->on_timer(context, kind);
 }
 
 void World::on_battery_empty(NodeId node) {

@@ -13,8 +13,9 @@
 #include "agents/robot_motion.hpp"
 #include "net/line_index.hpp"
 #include "net/radio.hpp"
-#include "protocols/sensor_protocol.hpp"
-#include "protocols/voronoi_protocol.hpp"
+#include "protocols/ground_truth.hpp"
+#include "protocols/protocol.hpp"
+#include "protocols/registry.hpp"
 #include "sim/log.hpp"
 #include "sim/simulator.hpp"
 
@@ -60,7 +61,7 @@ struct WorldDef {
   FieldDef field;
   double sensor_noise_sigma = 0.0;  ///< additive Gaussian noise on every reading
   net::RadioParams radio;
-  protocols::ProtocolParams protocol;
+  protocols::ProtocolChoice protocol;
   protocols::DensityScaling scaling;
   BeaconDef beacons;
   DispenserDef dispenser;
@@ -74,7 +75,9 @@ class WorldObserver {
   virtual void on_battery_empty(NodeId /*node*/) {}
 };
 
-class World final : public net::RadioListener, public net::MobilePositions {
+class World final : public net::RadioListener,
+                    public net::MobilePositions,
+                    public protocols::GroundTruth {
  public:
   /// Node ids: robots 0..R-1, then sensors R..R+S-1. Random streams are keyed by role and
   /// index, so adding a robot or a sensor never changes another node's draws.
@@ -103,7 +106,10 @@ class World final : public net::RadioListener, public net::MobilePositions {
   /// Position and velocity of a robot now.
   MotionState robot_state(std::size_t robot) const;
   Vec2 robot_target(std::size_t robot) const;
-  const protocols::VoronoiProtocol& robot_protocol(std::size_t robot) const;
+  const protocols::RobotProtocol& robot_protocol(std::size_t robot) const;
+  /// The definition of the run's protocol (its update columns, whether it reads ground truth).
+  const protocols::ProtocolDefinition& protocol_definition() const { return *definition_; }
+  bool protocol_uses_ground_truth() const { return truthful_factory_ != nullptr; }
   /// ρ at a sensor now, noiseless and without counting (metrics, figures).
   double true_density(std::size_t sensor);
   /// The exact Voronoi cell of `robot` among the true robot positions now. Candidates are
@@ -113,7 +119,9 @@ class World final : public net::RadioListener, public net::MobilePositions {
   /// Adds every sensor inside `cell` with its reading now to `accumulator` (the oracle's
   /// sensing pass; no messages); returns how many.
   std::uint32_t read_sensors_in(const protocols::ConvexPolygon& cell,
-                                protocols::CentroidAccumulator& accumulator);
+                                protocols::CentroidAccumulator& accumulator) override;
+  // ---- protocols::GroundTruth (the oracle and recorders only) -------------------------------
+  protocols::RobotCell true_cell(std::size_t robot) override { return oracle_cell(robot); }
   /// Positions of the field's moving entities now (targets, bump centres).
   std::vector<Vec2> source_positions() const;
   std::uint64_t clamped_readings() const { return field_.clamped_readings(); }
@@ -149,9 +157,10 @@ class World final : public net::RadioListener, public net::MobilePositions {
   net::Radio radio_;
   AnalyticField field_;
   protocols::ProtocolContext protocol_context_;
-  protocols::SensorProtocol sensor_protocol_;
+  const protocols::ProtocolDefinition* definition_;
+  const protocols::TruthfulRobotFactory* truthful_factory_;  // null unless the oracle
+  std::unique_ptr<protocols::SensorProtocol> sensor_protocol_;
   std::vector<std::unique_ptr<RobotAgent>> robots_;
-  std::vector<protocols::SensorState> sensor_states_;
   std::vector<std::uint32_t> sensor_read_counts_;  // keys the noise draws
   net::SpatialGrid sensor_grid_;
   net::LineIndex sensor_lines_;  // the oracle's scanline pass over sensor rows

@@ -1,9 +1,11 @@
 #pragma once
 // Message value types: a std::variant of payload structs, each with an
 // explicit size in bytes (docs/radio-and-energy.md). The radio knows these formats, never protocol
-// logic.
+// logic. Protocols may define types of their own (docs/protocol-api.md): they travel as a
+// CustomMessage whose body the radio never reads, and are counted under their own name.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string_view>
 #include <variant>
 #include <vector>
@@ -57,9 +59,8 @@ struct Reading {
   double reading;  ///< sent as 32 bits (MessageSizes::measurement_bytes); kept exact here
 };
 
-using Payload = std::variant<Beacon, Position, Report, Discover, Neighbor, Sense, Reading>;
-
-/// The message types, in variant order; used as array indices for counters.
+/// The message types: the built-in ones in variant order, then the types protocols register
+/// (register_message_type), numbered from kBuiltinMessageTypeCount. Used as counter indices.
 enum class MessageType : std::uint8_t {
   beacon,
   position,
@@ -69,16 +70,42 @@ enum class MessageType : std::uint8_t {
   sense,
   reading
 };
-inline constexpr std::size_t kMessageTypeCount = std::variant_size_v<Payload>;
+inline constexpr std::size_t kBuiltinMessageTypeCount = 7;
+/// Interest masks have one bit per type.
+inline constexpr std::size_t kMaxMessageTypes = 32;
 
-inline constexpr std::array<std::string_view, kMessageTypeCount> kMessageTypeNames = {
+inline constexpr std::array<std::string_view, kBuiltinMessageTypeCount> kBuiltinMessageTypeNames = {
     "BEACON", "POSITION", "REPORT", "DISCOVER", "NEIGHBOR", "SENSE", "READING"};
 
+/// A message of a type a protocol registered. The body is shared, never copied: a broadcast's
+/// receivers all read the same one. Its size on the air is fixed by the sender.
+struct CustomMessage {
+  MessageType type = MessageType::beacon;
+  std::uint32_t body_bytes = 0;  ///< size on the air without the frame header
+  std::shared_ptr<const void> body;
+};
+
+using Payload =
+    std::variant<Beacon, Position, Report, Discover, Neighbor, Sense, Reading, CustomMessage>;
+static_assert(std::variant_size_v<Payload> == kBuiltinMessageTypeCount + 1);
+
 inline MessageType type_of(const Payload& payload) {
-  return static_cast<MessageType>(payload.index());
+  const std::size_t index = payload.index();
+  if (index < kBuiltinMessageTypeCount) return static_cast<MessageType>(index);
+  return std::get_if<CustomMessage>(&payload)->type;
 }
-inline std::string_view name_of(MessageType type) {
-  return kMessageTypeNames[static_cast<std::size_t>(type)];
+
+/// Registers a message type under `name` (upper case letters, digits and '_', unique, not a
+/// built-in name) and returns it. Types are numbered in registration order; register them before
+/// the first run (the radio sizes its counters by message_type_count() when it is built).
+/// Throws std::invalid_argument on a bad or taken name, std::length_error past kMaxMessageTypes.
+MessageType register_message_type(std::string_view name);
+/// Built-in plus registered types.
+std::size_t message_type_count();
+/// The type's name as outputs spell it ("DISCOVER").
+std::string_view name_of(MessageType type);
+inline std::string_view name_of(std::size_t type) {
+  return name_of(static_cast<MessageType>(type));
 }
 
 /// Field sizes on the air (bytes). Defaults: docs/decisions/0004-radio-timing-and-sizes.md; all

@@ -329,6 +329,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   total_tx_j_ += tx_j;
   if (battery && params_.energy.idle_power_w > 0) schedule_depletion(source);
   const auto type_index = static_cast<std::size_t>(type);
+  MASNET_ASSERT(type_index < type_count_, "a message type registered after the radio was built");
   // The sender's per-type counter is a cache miss on large networks: fetch it now, count the
   // frame once the receivers are booked.
   TxCounter& sent = tx_[type_index * nodes_.size() + source_index];

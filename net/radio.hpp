@@ -290,7 +290,9 @@ class Radio {
     std::uint64_t count = 0, bytes = 0;  // side by side: a transmission touches one cache line
   };
   std::vector<TxCounter> tx_;  // [type][node]
-  std::array<TypeCounters, kMessageTypeCount> totals_{};
+  std::array<TypeCounters, kMaxMessageTypes> totals_{};
+  // Built-in and registered message types when the radio was built: the per-node counters' stride.
+  std::size_t type_count_ = message_type_count();
   double total_tx_j_ = 0.0;
   mutable std::uint64_t total_heard_bytes_ = 0;
   // E_rx is linear in bits, so a node's receive energy is E_elec·8·(bytes it heard).

@@ -9,7 +9,7 @@ namespace masnet::net {
 void Radio::prepare_index() {
   // Keep what each node has heard across a rebuild (nodes added after the first frame).
   materialize();
-  const std::size_t n_nodes = nodes_.size(), types = kMessageTypeCount;
+  const std::size_t n_nodes = nodes_.size(), types = type_count_;
   std::vector<std::uint64_t> heard(n_nodes, 0), overheard(n_nodes, 0), count(n_nodes * types, 0),
       bytes(n_nodes * types, 0);
   const std::size_t old_stride = heard_bytes_.size();
@@ -81,7 +81,7 @@ void Radio::materialize() const {
   }
   std::fill(heard_diff_.begin(), heard_diff_.end(), 0);
   pending_bulk_frames_ = pending_bulk_bytes_ = 0;
-  for (std::size_t t = 0; t < kMessageTypeCount; ++t) {
+  for (std::size_t t = 0; t < type_count_; ++t) {
     std::uint64_t count = 0, bytes = 0;
     for (std::size_t k = 0; k < n; ++k) {
       count += rx_count_diff_[t * (n + 1) + k];
@@ -100,7 +100,7 @@ TypeCounters Radio::counters(NodeId node, MessageType type) const {
   materialize();
   const auto t = static_cast<std::size_t>(type);
   TypeCounters c;
-  const std::size_t stride = tx_.size() / kMessageTypeCount;  // nodes at the last indexing
+  const std::size_t stride = tx_.size() / type_count_;  // nodes at the last indexing
   if (sim::index(node) < stride) {
     c.tx_count = tx_[t * stride + sim::index(node)].count;
     c.tx_bytes = tx_[t * stride + sim::index(node)].bytes;
@@ -140,7 +140,7 @@ sim::Fingerprint Radio::traffic_fingerprint() {
   // folded per-node sums, in id order: the value does not depend on who booked them.
   sim::Fingerprint fp = traffic_;
   const std::size_t n_nodes = nodes_.size();
-  const std::size_t tx_stride = tx_.size() / kMessageTypeCount;
+  const std::size_t tx_stride = tx_.size() / type_count_;
   const std::size_t rx_stride = heard_bytes_.size();
   for (std::size_t n = 0; n < n_nodes; ++n) {
     const Node& node = nodes_[n];
@@ -151,7 +151,7 @@ sim::Fingerprint Radio::traffic_fingerprint() {
     fp.mix((node.unreachable_count << 32) ^ node.refused_count);
     fp.mix(senders_[n].energy_tx_j);
     fp.mix(static_cast<std::uint64_t>(sim::to_ns(node.died_at)) ^ std::uint64_t{node.alive});
-    for (std::size_t t = 0; t < kMessageTypeCount; ++t) {
+    for (std::size_t t = 0; t < type_count_; ++t) {
       const TxCounter sent = n < tx_stride ? tx_[t * tx_stride + n] : TxCounter{};
       const std::uint64_t rx_count = rx_count_[t * rx_stride + hot],
                           rx_bytes = rx_bytes_[t * rx_stride + hot];

@@ -2,7 +2,7 @@
 
 namespace masnet::protocols {
 
-void SensorProtocol::on_frame(SensorHost& host, SensorState& state, const net::Frame& frame) const {
+void PaperSensorProtocol::on_frame(SensorHost& host, const net::Frame& frame) {
   if (const auto* sense = std::get_if<net::Sense>(&frame.payload)) {
     // Answer only if this sensor lies inside the robot's cell (boundary included).
     if (frame.source != sense_source_ || frame.number != sense_number_) {
@@ -16,6 +16,7 @@ void SensorProtocol::on_frame(SensorHost& host, SensorState& state, const net::F
       host.unicast(sense->robot,
                    net::Reading{host.id(), sense->update, host.position(), host.reading()});
   } else if (const auto* position = std::get_if<net::Position>(&frame.payload)) {
+    SensorState& state = states_[host.index()];
     // 2: each sensor finds its closest robot (ties: the lower id).
     const double d2 = (position->position - host.position()).squaredNorm();
     if (d2 < state.closest_distance2 ||
@@ -30,7 +31,8 @@ void SensorProtocol::on_frame(SensorHost& host, SensorState& state, const net::F
   }
 }
 
-void SensorProtocol::on_timer(SensorHost& host, SensorState& state, std::uint32_t kind) const {
+void PaperSensorProtocol::on_timer(SensorHost& host, std::uint32_t kind) {
+  const SensorState& state = states_[host.index()];
   // 3: each sensor sends its position and measurement to its closest robot.
   if (kind == kReport && state.closest_robot != sim::kNoNode) {
     const double reading = host.reading();

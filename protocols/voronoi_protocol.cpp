@@ -22,14 +22,14 @@ VoronoiProtocol::VoronoiProtocol(RobotHost& host, const ProtocolParams& params,
                                  const ProtocolContext& context, double phase_s,
                                  const sim::Log* log)
     : host_(host), params_(params), context_(context), phase_s_(phase_s), log_(log) {
-  switch (params_.kind) {
-    case ProtocolKind::fixed_radius:
+  switch (params_.variant) {
+    case VoronoiVariant::fixed_radius:
       radius_m_ = std::min(params_.fixed_radius, context_.max_range);
       break;
-    case ProtocolKind::gabriel:
+    case VoronoiVariant::gabriel:
       radius_m_ = context_.max_range;
       break;
-    default:
+    case VoronoiVariant::radius_doubling:
       radius_m_ = params_.decay.min;
       break;
   }
@@ -39,8 +39,7 @@ VoronoiProtocol::VoronoiProtocol(RobotHost& host, const ProtocolParams& params,
 
 void VoronoiProtocol::start() {
   last_target_ = host_.position();
-  if (params_.kind == ProtocolKind::none) return;
-  if (params_.kind != ProtocolKind::radius_doubling) {  // only R_i needs initialising
+  if (params_.variant != VoronoiVariant::radius_doubling) {  // only R_i needs initialising
     schedule_ticks();
     return;
   }
@@ -97,15 +96,10 @@ void VoronoiProtocol::begin_update() {
   tick_pending_ = false;
   position_ = host_.position();
   record_.position = position_;
-  MASNET_LOG(log_, debug, "robot {} update {}: start at ({}, {}), R {}{}", number(host_.id()),
-             update_, position_.x(), position_.y(), radius_m_, record_.delayed ? " (delayed)" : "");
+  log_update_start(log_, record_, radius_m_);
   neighbours_.clear();
   readings_.clear();
   sensed_cell_.clear();
-  if (params_.kind == ProtocolKind::oracle) {
-    run_oracle_update();
-    return;
-  }
   discover_round();  // R_i carried over from the preceding update
 }
 
@@ -115,7 +109,7 @@ void VoronoiProtocol::discover_round() {
   phase_ = Phase::discovering;
   const std::uint32_t bytes =
       host_.broadcast(radius_m_, net::Discover{host_.id(), position_, radius_m_});
-  count(net::MessageType::discover, bytes);
+  record_.messages.add(net::MessageType::discover, bytes);
   host_.set_timer(sim::seconds(params_.reply_timeout_s), kRoundEnd);
 }
 
@@ -138,7 +132,7 @@ void VoronoiProtocol::end_round() {
   sensed_cell_ = cell_.polygon.vertices;
   const std::uint32_t bytes =
       host_.broadcast(sense_range, net::Sense{host_.id(), update_, cell_.polygon.vertices});
-  count(net::MessageType::sense, bytes);
+  record_.messages.add(net::MessageType::sense, bytes);
   host_.set_timer(sim::seconds(params_.reply_timeout_s), kSenseEnd);
 }
 
@@ -149,7 +143,7 @@ void VoronoiProtocol::decide() {
     cell_ = compute_cell();
     cell_sites_ = neighbours_.size();
   }
-  if (params_.kind != ProtocolKind::radius_doubling) {
+  if (params_.variant != VoronoiVariant::radius_doubling) {
     // One round only; the cell is not certified when it reaches beyond the radius.
     finish_update(max_vertex_distance(cell_.polygon, position_) > radius_m_);
     return;
@@ -216,8 +210,8 @@ void VoronoiProtocol::finish_update(bool truncated) {
   record_.centroid = last_target_;
   record_.finished = host_.now();
   last_cell_ = record_.cell;
-  log_update_end();
-  if (params_.kind == ProtocolKind::radius_doubling) decay_range();
+  log_update_end(log_, record_);
+  if (params_.variant == VoronoiVariant::radius_doubling) decay_range();
   phase_ = Phase::idle;
   host_.update_finished(record_);
   if (tick_pending_) begin_update();
@@ -237,34 +231,20 @@ void VoronoiProtocol::decay_range() {
   }
 }
 
-void VoronoiProtocol::run_oracle_update() {
-  const RobotCell truth = host_.true_cell();
-  CentroidAccumulator accumulator(context_.scaling);
-  record_.readings = host_.read_sensors_in(truth.polygon, accumulator);
-  record_.radius = 2.0 * max_vertex_distance(truth.polygon, position_);  // what Cortés' rule needs
-  record_.cell = truth.polygon;
-  record_.neighbours = truth.neighbours;
-  if (accumulator.has_mass()) {
-    last_target_ = accumulator.centroid();
-    host_.set_target(last_target_);
-  } else {
-    record_.no_mass = true;
-  }
-  record_.centroid = last_target_;
-  record_.finished = host_.now();
-  last_cell_ = record_.cell;
-  log_update_end();
-  host_.update_finished(record_);
+void log_update_start(const sim::Log* log, const UpdateSummary& record, double radius) {
+  MASNET_LOG(log, debug, "robot {} update {}: start at ({}, {}), R {}{}", number(record.robot),
+             record.update, record.position.x(), record.position.y(), radius,
+             record.delayed ? " (delayed)" : "");
 }
 
-void VoronoiProtocol::log_update_end() const {
-  MASNET_LOG(log_, debug,
+void log_update_end(const sim::Log* log, const UpdateSummary& record) {
+  MASNET_LOG(log, debug,
              "robot {} update {}: end after {} rounds, R {}{}, {} neighbours {}, {} readings, "
              "centroid ({}, {}){}",
-             number(record_.robot), record_.update, record_.rounds, record_.radius,
-             record_.truncated ? " (truncated)" : "", record_.neighbours.size(),
-             node_list(record_.neighbours), record_.readings, record_.centroid.x(),
-             record_.centroid.y(), record_.no_mass ? " (no mass: target kept)" : "");
+             number(record.robot), record.update, record.rounds, record.radius,
+             record.truncated ? " (truncated)" : "", record.neighbours.size(),
+             node_list(record.neighbours), record.readings, record.centroid.x(),
+             record.centroid.y(), record.no_mass ? " (no mass: target kept)" : "");
 }
 
 // ---- Messages and timers --------------------------------------------------------------------
@@ -278,7 +258,7 @@ void VoronoiProtocol::on_frame(const net::Frame& frame) {
                  number(host_.id()), number(neighbour->robot));
       return;
     }
-    count(net::MessageType::neighbor, frame.size_bytes);
+    record_.messages.add(net::MessageType::neighbor, frame.size_bytes);
     // A neighbour is taken at the position of its first reply in this update: later replies
     // (from later rounds) would move the bisectors under the stop rule, and with R ← 2d — no
     // margin — drifting neighbours could keep an update growing round after round.
@@ -293,7 +273,7 @@ void VoronoiProtocol::on_frame(const net::Frame& frame) {
                  number(host_.id()), update_, number(reading->sensor), reading->update);
       return;
     }
-    count(net::MessageType::reading, frame.size_bytes);
+    record_.messages.add(net::MessageType::reading, frame.size_bytes);
     readings_.push_back({reading->sensor, reading->position, reading->reading});
   } else if (const auto* report = std::get_if<net::Report>(&frame.payload)) {
     if (phase_ == Phase::initialising) on_report(*report, frame.size_bytes);
@@ -301,7 +281,6 @@ void VoronoiProtocol::on_frame(const net::Frame& frame) {
 }
 
 void VoronoiProtocol::answer_discover(const net::Discover& discover) {
-  if (params_.kind == ProtocolKind::none || params_.kind == ProtocolKind::oracle) return;
   host_.unicast(discover.robot, net::Neighbor{host_.id(), host_.position()});
 }
 
@@ -326,13 +305,6 @@ void VoronoiProtocol::on_timer(std::uint32_t kind) {
   }
 }
 
-void VoronoiProtocol::count(net::MessageType type, std::uint32_t bytes) {
-  if (bytes == 0) return;  // refused by the radio
-  MessageTally& tally = record_.messages[static_cast<std::size_t>(type)];
-  ++tally.count;
-  tally.bytes += bytes;
-}
-
 bool VoronoiProtocol::cell_is_sensed() const {
   // Sensors answered because they lie in the cell sent with SENSE (the same exact test): while
   // the cell is still that one, every reading is inside without testing it again.
@@ -353,7 +325,7 @@ Cell VoronoiProtocol::compute_cell() const {
   for (const HeardNeighbour& n : neighbours_)
     sites.push_back(n.position);
   std::vector<std::uint32_t> candidates;
-  if (params_.kind == ProtocolKind::gabriel) {
+  if (params_.variant == VoronoiVariant::gabriel) {
     candidates = gabriel_neighbours(0, sites);  // the paper's approximation for sparse robots
   } else {
     for (std::uint32_t i = 1; i < sites.size(); ++i)

@@ -1,11 +1,11 @@
 #pragma once
-// The robots' Voronoi protocols as one state machine (docs/protocols.md). The variants differ in a
-// rule, not in a file: how many DISCOVER rounds, how R grows, when to stop, how R decays.
+// The robots' message-based Voronoi protocols as one state machine (docs/protocols.md). The
+// variants differ in a rule, not in a file: how many DISCOVER rounds, how R grows, when to stop,
+// how R decays.
 //   radius_doubling — the paper's protocol (paper §III-B) after Cortés et al.
 //   fixed_radius    — one DISCOVER round with a constant R
 //   gabriel         — one round at max range, only Gabriel neighbours bound the cell
-//   oracle          — the exact cell from true positions, zero messages
-//   none            — the robot never updates (demo scenarios)
+// (The `oracle` and `none` protocols are in protocols/oracle_protocol.hpp.)
 // Paper names: R_i → radius_m_, d_i → farthest_m, p_i → position_, V_i → cell.
 #include <cstdint>
 #include <vector>
@@ -13,28 +13,14 @@
 #include "protocols/density_scaling.hpp"
 #include "protocols/geometry.hpp"
 #include "protocols/host.hpp"
+#include "protocols/protocol.hpp"
+#include "protocols/registry.hpp"
 #include "sim/log.hpp"
 
 namespace masnet::protocols {
 
-enum class ProtocolKind { none, radius_doubling, oracle, fixed_radius, gabriel };
+enum class VoronoiVariant { radius_doubling, fixed_radius, gabriel };
 
-/// The kind's name as a scenario file spells it (`protocol.kind`).
-constexpr const char* protocol_kind_name(ProtocolKind kind) {
-  switch (kind) {
-    case ProtocolKind::none:
-      return "none";
-    case ProtocolKind::radius_doubling:
-      return "radius_doubling";
-    case ProtocolKind::oracle:
-      return "oracle";
-    case ProtocolKind::fixed_radius:
-      return "fixed_radius";
-    case ProtocolKind::gabriel:
-      return "gabriel";
-  }
-  return "?";
-}
 /// How R grows when the stop rule fails: R ← 2·d (the paper) or R ← 2·R (Cortés).
 enum class Growth { to_2d, doubling };
 /// What d is: the farthest reading sensor in V (the paper) or the farthest vertex of V (Cortés,
@@ -48,8 +34,9 @@ struct RangeDecay {
   double min = 0.02;           ///< R_min, world units: the floor, and R when nobody reports
 };
 
+/// The variants' rules, read from the scenario's `protocol:` keys (protocols/builtin_protocols.cpp).
 struct ProtocolParams {
-  ProtocolKind kind = ProtocolKind::radius_doubling;
+  VoronoiVariant variant = VoronoiVariant::radius_doubling;
   double period_s = 0.01;  ///< Δt between updates (paper: 0.01 s)
   Growth growth = Growth::to_2d;
   StopCriterion criterion = StopCriterion::sensors;
@@ -59,20 +46,11 @@ struct ProtocolParams {
   double fixed_radius = 0.3;       ///< R of `fixed_radius`, world units
 };
 
-/// What every robot's protocol knows of the deployment.
-struct ProtocolContext {
-  ConvexPolygon domain;
-  DensityScaling scaling;
-  double max_range = 1.5;  ///< the radio's cap, world units
-};
+/// An update's first and last debug lines (docs/logging.md), shared by the built-ins.
+void log_update_start(const sim::Log* log, const UpdateSummary& record, double radius);
+void log_update_end(const sim::Log* log, const UpdateSummary& record);
 
-/// A reading the robot holds from its last update, inside its cell.
-struct CellReading {
-  Vec2 position;
-  double value;
-};
-
-class VoronoiProtocol {
+class VoronoiProtocol final : public RobotProtocol {
  public:
   /// Timer kinds.
   enum Timer : std::uint32_t { kInitEnd = 1, kTick, kRoundEnd, kSenseEnd };
@@ -83,14 +61,13 @@ class VoronoiProtocol {
                   double phase_s, const sim::Log* log = nullptr);
 
   /// Starts at time now(): the initialisation of paper §III-B, then periodic updates.
-  void start();
-  void on_frame(const net::Frame& frame);
-  void on_timer(std::uint32_t kind);
+  void start() override;
+  void on_frame(const net::Frame& frame) override;
+  void on_timer(std::uint32_t kind) override;
 
-  double radius() const { return radius_m_; }  ///< R_i
-  const ConvexPolygon& cell() const { return last_cell_; }
-  /// The readings of the last finished update that lie inside its cell.
-  const std::vector<CellReading>& cell_readings() const { return cell_readings_; }
+  double radius() const override { return radius_m_; }  ///< R_i
+  const ConvexPolygon& cell() const override { return last_cell_; }
+  const std::vector<CellReading>& cell_readings() const override { return cell_readings_; }
   bool busy() const { return phase_ != Phase::idle; }
   std::uint64_t delayed_updates() const { return delayed_updates_; }
 
@@ -120,11 +97,8 @@ class VoronoiProtocol {
   void decide();          // steps 3-4: d_i, then stop or grow R_i
   void finish_update(bool truncated);
   void decay_range();
-  void log_update_end() const;
-  void run_oracle_update();
 
   void answer_discover(const net::Discover& discover);
-  void count(net::MessageType type, std::uint32_t bytes);
   double farthest_reading_in_cell() const;
   /// True while the cell is the one sent with the last SENSE: every reading is then inside.
   bool cell_is_sensed() const;

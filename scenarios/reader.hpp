@@ -136,6 +136,11 @@ class Section {
       if (name == picked) return value;
     return fallback;
   }
+  /// One of `names`; the message lists them all when the value is not one.
+  std::string choice_of(std::string_view key, const std::vector<std::string>& names,
+                        const std::string& fallback) {
+    return choose(key, names, fallback);
+  }
   Vec2 point(std::string_view key, Vec2 fallback);
   /// A list of [x, y] points; `min_count` checked.
   std::vector<Vec2> points(std::string_view key, std::size_t min_count = 0);

@@ -110,7 +110,7 @@ void Recorder::sample() {
   if (n_robots) row.mean_radius /= static_cast<double>(n_robots);
 
   net::Radio& radio = world_.radio();
-  for (std::size_t t = 0; t < net::kMessageTypeCount; ++t) {
+  for (std::size_t t = 0; t < net::message_type_count(); ++t) {
     row.messages += radio.totals(static_cast<net::MessageType>(t)).tx_count;
     row.bytes += radio.totals(static_cast<net::MessageType>(t)).tx_bytes;
   }
@@ -235,7 +235,7 @@ void Recorder::on_update(std::size_t robot, const protocols::UpdateRecord& recor
   UpdateRow row{record, true, true};
   // Cell correctness: the neighbour set the robot computed against the true one now, and
   // against the one of the positions it heard (docs/decisions/0010-cell-correctness.md).
-  if (def_.world.protocol.kind != protocols::ProtocolKind::oracle) {
+  if (!world_.protocol_uses_ground_truth()) {  // the oracle's cells are true by definition
     // The robot's own cell is a good guess of the true one's reach (Cortés' rule needs twice the
     // farthest vertex; a quarter more spares most doublings).
     const double guess =
@@ -301,8 +301,13 @@ void Recorder::write_updates(const std::string& path) const {
   out.print(
       "robot,update,t_start_s,t_end_s,latency_s,rounds,radius,truncated,delayed,no_mass,readings,"
       "neighbours,correct,correct_heard,cx,cy");
-  for (std::size_t t = 0; t < net::kMessageTypeCount; ++t)
-    out.print(",{0}_count,{0}_bytes", net::kMessageTypeNames[t]);
+  const std::size_t types = net::message_type_count();
+  for (std::size_t t = 0; t < types; ++t)
+    out.print(",{0}_count,{0}_bytes", net::name_of(t));
+  // The protocol's own per-update fields (docs/protocol-api.md).
+  const std::vector<std::string>& extra = world_.protocol_definition().update_columns;
+  for (const std::string& column : extra)
+    out.print(",{}", column);
   out.print("\n");
   for (const UpdateRow& u : updates_) {
     const auto& r = u.record;
@@ -311,8 +316,14 @@ void Recorder::write_updates(const std::string& path) const {
               sim::to_seconds(r.finished - r.started), r.rounds, r.radius, r.truncated, r.delayed,
               r.no_mass, r.readings, r.neighbours.size(), u.correct, u.correct_heard,
               r.centroid.x(), r.centroid.y());
-    for (const auto& tally : r.messages)
-      out.print(",{},{}", tally.count, tally.bytes);
+    for (std::size_t t = 0; t < types; ++t)
+      out.print(",{},{}", r.messages[t].count, r.messages[t].bytes);
+    for (std::size_t k = 0; k < extra.size(); ++k) {
+      if (k < r.extra.size())
+        out.print(",{}", r.extra[k]);
+      else
+        out.print(",");
+    }
     out.print("\n");
   }
   out.close();
@@ -324,8 +335,9 @@ void Recorder::write_nodes(const std::string& path) const {
       "node,role,index,x,y,alive,died_at_s,energy_j,energy_tx_j,energy_rx_j,energy_idle_j,tx_count,"
       "tx_bytes,"
       "rx_count,rx_bytes,overheard_count,heard_bytes,lost_count,unreachable_count,refused_count");
-  for (std::size_t t = 0; t < net::kMessageTypeCount; ++t)
-    out.print(",tx_{0},rx_{0}", net::kMessageTypeNames[t]);
+  const std::size_t types = net::message_type_count();
+  for (std::size_t t = 0; t < types; ++t)
+    out.print(",tx_{0},rx_{0}", net::name_of(t));
   out.print("\n");
   net::Radio& radio = world_.radio();
   // Rows are formatted with compiled formats into a buffer written in large pieces: a million
@@ -340,7 +352,7 @@ void Recorder::write_nodes(const std::string& path) const {
     const Vec2 p = world_.position(id);
     const net::NodeRadioStats& s = radio.stats(id);
     std::uint64_t tx = 0, txb = 0, rx = 0, rxb = 0;
-    for (std::size_t t = 0; t < net::kMessageTypeCount; ++t) {
+    for (std::size_t t = 0; t < types; ++t) {
       const auto& c = radio.counters(id, static_cast<net::MessageType>(t));
       tx += c.tx_count;
       txb += c.tx_bytes;
@@ -354,7 +366,7 @@ void Recorder::write_nodes(const std::string& path) const {
                    s.energy_tx_j + s.energy_rx_j + s.energy_idle_j, s.energy_tx_j, s.energy_rx_j,
                    s.energy_idle_j, tx, txb, rx, rxb, s.overheard_count, s.heard_bytes,
                    s.lost_count, s.unreachable_count, s.refused_count);
-    for (std::size_t t = 0; t < net::kMessageTypeCount; ++t) {
+    for (std::size_t t = 0; t < types; ++t) {
       const auto& c = radio.counters(id, static_cast<net::MessageType>(t));
       fmt::format_to(it, FMT_COMPILE(",{},{}"), c.tx_count, c.rx_count);
     }
@@ -433,14 +445,14 @@ nlohmann::json Recorder::summary_metrics() const {
   // Messages: transmissions, by type.
   std::uint64_t count = 0, bytes = 0;
   nlohmann::json by_type = nlohmann::json::object();
-  for (std::size_t t = 0; t < net::kMessageTypeCount; ++t) {
+  for (std::size_t t = 0; t < net::message_type_count(); ++t) {
     const auto& c = radio.totals(static_cast<net::MessageType>(t));
     count += c.tx_count;
     bytes += c.tx_bytes;
-    by_type[std::string(net::kMessageTypeNames[t])] = {{"count", c.tx_count},
-                                                       {"bytes", c.tx_bytes},
-                                                       {"rx_count", c.rx_count},
-                                                       {"rx_bytes", c.rx_bytes}};
+    by_type[std::string(net::name_of(t))] = {{"count", c.tx_count},
+                                             {"bytes", c.tx_bytes},
+                                             {"rx_count", c.rx_count},
+                                             {"rx_bytes", c.rx_bytes}};
   }
   j["messages"] = {{"total", {{"count", count}, {"bytes", bytes}}}, {"by_type", by_type}};
 
@@ -478,12 +490,13 @@ nlohmann::json Recorder::summary_metrics() const {
 
   // Protocol statistics over all updates.
   nlohmann::json p;
-  p["name"] = protocols::protocol_kind_name(def_.world.protocol.kind);
+  p["name"] = def_.world.protocol.kind;
   const double n_updates = static_cast<double>(updates_.size());
   double rounds = 0, latency = 0, latency_max = 0, radius = 0;
   std::uint32_t rounds_max = 0;
   std::uint64_t truncated = 0, delayed = 0, no_mass = 0;
-  std::array<double, net::kMessageTypeCount> per_type{};
+  const std::size_t types = net::message_type_count();
+  std::vector<double> per_type(types, 0.0);
   double update_bytes = 0;
   for (const UpdateRow& u : updates_) {
     const auto& r = u.record;
@@ -496,7 +509,7 @@ nlohmann::json Recorder::summary_metrics() const {
     truncated += r.truncated ? 1 : 0;
     delayed += r.delayed ? 1 : 0;
     no_mass += r.no_mass ? 1 : 0;
-    for (std::size_t t = 0; t < net::kMessageTypeCount; ++t) {
+    for (std::size_t t = 0; t < types; ++t) {
       per_type[t] += static_cast<double>(r.messages[t].count);
       update_bytes += static_cast<double>(r.messages[t].bytes);
     }
@@ -516,8 +529,8 @@ nlohmann::json Recorder::summary_metrics() const {
   p["latency_max_s"] = latency_max;
   p["radius_mean"] = radius / div;
   nlohmann::json per_update = nlohmann::json::object();
-  for (std::size_t t = 0; t < net::kMessageTypeCount; ++t)
-    if (per_type[t] > 0) per_update[std::string(net::kMessageTypeNames[t])] = per_type[t] / div;
+  for (std::size_t t = 0; t < types; ++t)
+    if (per_type[t] > 0) per_update[std::string(net::name_of(t))] = per_type[t] / div;
   p["messages_per_update"] = per_update;
   p["bytes_per_update"] = update_bytes / div;
   j["protocol"] = p;

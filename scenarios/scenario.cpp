@@ -313,53 +313,6 @@ net::RadioParams read_radio(Section s) {
   return r;
 }
 
-protocols::ProtocolParams read_protocol(Section s) {
-  using protocols::ProtocolKind;
-  protocols::ProtocolParams p;
-  p.kind = s.choice<ProtocolKind>("kind", ProtocolKind::radius_doubling,
-                                  {{"none", ProtocolKind::none},
-                                   {"radius_doubling", ProtocolKind::radius_doubling},
-                                   {"oracle", ProtocolKind::oracle},
-                                   {"fixed_radius", ProtocolKind::fixed_radius},
-                                   {"gabriel", ProtocolKind::gabriel}});
-  p.period_s = s.number("period", p.period_s, Range::time());
-  p.reply_timeout_s = s.number("reply_timeout", p.reply_timeout_s, Range::time());
-  p.growth = s.choice<protocols::Growth>(
-      "growth", p.growth,
-      {{"to_2d", protocols::Growth::to_2d}, {"double", protocols::Growth::doubling}});
-  p.criterion =
-      s.choice<protocols::StopCriterion>("criterion", p.criterion,
-                                         {{"sensors", protocols::StopCriterion::sensors},
-                                          {"vertices", protocols::StopCriterion::vertices}});
-  p.shrink_on_stop = s.boolean("shrink_on_stop", p.shrink_on_stop);
-  Section d = s.section("decay");
-  p.decay.patience =
-      static_cast<std::uint32_t>(d.integer("patience", p.decay.patience, 0, 1000000));
-  p.decay.step = d.number("step", p.decay.step, Range::non_negative());
-  p.decay.min = d.number("min", p.decay.min, Range::positive());
-  d.finish();
-  p.fixed_radius = s.number("radius", p.fixed_radius, Range::positive());
-  // A knob of another kind is legal (a sweep varies the kind under a fixed set of knobs) but
-  // unused: say so, so that nobody believes `growth` changed an oracle run.
-  using K = ProtocolKind;
-  const auto applies = [&](std::string_view key, std::initializer_list<K> kinds,
-                           const char* which) {
-    if (!s.has(key) || std::find(kinds.begin(), kinds.end(), p.kind) != kinds.end()) return;
-    s.warn_at(key, std::string("applies to protocol kind ") + which + ", not " +
-                       std::string(protocols::protocol_kind_name(p.kind)) + ": it is ignored");
-  };
-  applies("period", {K::radius_doubling, K::oracle, K::fixed_radius, K::gabriel},
-          "radius_doubling, oracle, "
-          "fixed_radius and gabriel");
-  applies("reply_timeout", {K::radius_doubling, K::fixed_radius, K::gabriel},
-          "radius_doubling, fixed_radius and gabriel");
-  for (const char* key : {"growth", "criterion", "shrink_on_stop", "decay"})
-    applies(key, {K::radius_doubling}, "radius_doubling");
-  applies("radius", {K::fixed_radius}, "fixed_radius");
-  s.finish();
-  return p;
-}
-
 agents::BeaconDef read_beacons(Section s) {
   agents::BeaconDef b;
   b.senders = s.choice<agents::BeaconSenders>("senders", agents::BeaconSenders::none,

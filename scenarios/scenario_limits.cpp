@@ -41,8 +41,9 @@ void check_work(const ScenarioDef& def, std::size_t sensor_count, const NodeCaps
   const auto robots = static_cast<double>(def.world.robots.size());
   const auto sensors = static_cast<double>(sensor_count);
   std::vector<Work> work;
-  if (def.world.protocol.kind != protocols::ProtocolKind::none)
-    work.push_back({"protocol updates", duration / def.world.protocol.period_s * robots,
+  // A protocol that updates periodically declares `period` (the built-ins but `none` do).
+  if (def.world.protocol.params.has("period"))
+    work.push_back({"protocol updates", duration / def.world.protocol.params.real("period") * robots,
                     &at.protocol, "period"});
   using agents::BeaconSenders;
   const BeaconSenders senders = def.world.beacons.senders;

@@ -54,6 +54,10 @@ std::vector<agents::SensorDef> read_sensors(Section s, const protocols::ConvexPo
 std::vector<Vec2> read_robots(Section s, const protocols::ConvexPolygon& domain, std::uint64_t seed,
                               agents::MotionParams& motion, const NodeCaps& caps);
 
+/// The `protocol` section: `kind` names a registered protocol; every registered protocol's keys
+/// are validated, the chosen one's are kept (scenario_protocol.cpp).
+protocols::ProtocolChoice read_protocol(Section s);
+
 /// The sections a limit message points into (copies of the loader's, for their locations).
 struct LimitSections {
   Section field, scaling, robots, protocol, beacons, output;

@@ -5,6 +5,7 @@
 
 #include "agents/world.hpp"
 #include "protocols/heard_cell.hpp"
+#include "protocols/voronoi_protocol.hpp"
 #include "sim/random.hpp"
 
 using namespace masnet;
@@ -30,9 +31,11 @@ WorldDef layout(std::uint64_t seed, protocols::StopCriterion criterion, double l
   def.field.kind = agents::FieldKind::uniform;
   def.radio.max_range = 1.5;
   def.radio.loss = loss;
-  def.protocol.kind = protocols::ProtocolKind::radius_doubling;
-  def.protocol.criterion = criterion;
-  def.protocol.decay = {3, 0.02, 0.02};
+  def.protocol = protocols::choose_protocol("radius_doubling");  // decay: patience 3, step and
+                                                                  // min 0.02
+  def.protocol.params.set("criterion", std::string(criterion == protocols::StopCriterion::vertices
+                                                       ? "vertices"
+                                                       : "sensors"));
   return def;
 }
 
@@ -45,7 +48,7 @@ WorldDef moving_layout(std::uint64_t seed) {
   def.field.min_distance = 0.025;
   def.field.targets = {agents::PathDef{Vec2{0.23, 0.2}, Vec2{0, 0.6}, {}, 0, false},
                        agents::PathDef{Vec2{0.73, 0.8}, Vec2{-0.3, -0.6}, {}, 0, false}};
-  def.protocol.growth = protocols::Growth::doubling;
+  def.protocol.params.set("growth", std::string("double"));
   return def;
 }
 

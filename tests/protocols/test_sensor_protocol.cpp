@@ -15,13 +15,18 @@ struct FakeSensorHost final : protocols::SensorHost {
   Vec2 at;
   std::vector<NodeId> replied_to;
   explicit FakeSensorHost(Vec2 position) : at(position) {}
+  sim::Time now() const override { return sim::kTimeZero; }
   NodeId id() const override { return sim::node_id(100); }
+  std::size_t index() const override { return 0; }
   Vec2 position() const override { return at; }
   double reading() override { return 1.0; }
+  std::uint32_t broadcast(double, net::Payload) override { return 1; }
   std::uint32_t unicast(NodeId to, net::Payload) override {
     replied_to.push_back(to);
     return 1;
   }
+  const net::MessageSizes& message_sizes() const override { return sizes; }
+  net::MessageSizes sizes;
   void set_timer(sim::Duration, std::uint32_t) override {}
 };
 
@@ -42,14 +47,13 @@ TEST_CASE("a sensor answers every SENSE whose cell holds it, and only those, SEN
   // each frame's own cell, whether the next frame comes from the same robot or another.
   const std::vector<Vec2> left{Vec2{0, 0}, Vec2{0.5, 0}, Vec2{0.5, 1}, Vec2{0, 1}};
   const std::vector<Vec2> right{Vec2{0.5, 0}, Vec2{1, 0}, Vec2{1, 1}, Vec2{0.5, 1}};
-  const protocols::SensorProtocol protocol(0.01);
-  protocols::SensorState state;
+  protocols::PaperSensorProtocol protocol(0.01, 1);
   FakeSensorHost in_left(Vec2{0.25, 0.5}), on_edge(Vec2{0.5, 0.75});
   for (FakeSensorHost* host : {&in_left, &on_edge}) {
-    protocol.on_frame(*host, state, sense(0, 7, left));
-    protocol.on_frame(*host, state, sense(0, 8, right));  // same robot, next frame
-    protocol.on_frame(*host, state, sense(1, 8, left));   // another robot, same number
-    protocol.on_frame(*host, state,
+    protocol.on_frame(*host, sense(0, 7, left));
+    protocol.on_frame(*host, sense(0, 8, right));  // same robot, next frame
+    protocol.on_frame(*host, sense(1, 8, left));   // another robot, same number
+    protocol.on_frame(*host,
                       sense(1, 9, std::vector<Vec2>{Vec2{0, 0}, Vec2{1, 0}}));  // no polygon
   }
   CHECK(in_left.replied_to == std::vector<NodeId>{sim::node_id(0), sim::node_id(1)});

@@ -58,8 +58,8 @@ class FakeHost : public RobotHost {
   void set_target(const Vec2& target) override { targets.push_back(target); }
   void update_finished(const UpdateRecord& record) override { records.push_back(record); }
   double sensor_area(NodeId) const override { return 1.0; }
-  RobotCell true_cell() override { return {}; }
-  std::uint32_t read_sensors_in(const ConvexPolygon&, CentroidAccumulator&) override { return 0; }
+  const net::MessageSizes& message_sizes() const override { return sizes; }
+  net::MessageSizes sizes;
 
   /// Fires the earliest timer of `kind` (advancing the clock to it) and returns true.
   bool fire(VoronoiProtocol& p, std::uint32_t kind) {
@@ -320,7 +320,7 @@ TEST_CASE("the gabriel variant bounds the cell by Gabriel neighbours only, in on
   w.robots[1] = Vec2{0.7, 0.5};   // Gabriel neighbour
   w.robots[2] = Vec2{0.9, 0.52};  // hidden behind robot 1: inside the circle on (p, robot 2)
   ProtocolParams params;
-  params.kind = ProtocolKind::gabriel;
+  params.variant = VoronoiVariant::gabriel;
   FakeHost host;
   VoronoiProtocol p(host, params, unit_square(), 0.001);
   p.start();  // no initialisation round for gabriel
@@ -335,7 +335,7 @@ TEST_CASE("fixed_radius runs one round at its radius and flags a cell reaching p
   World w;
   w.robots[1] = Vec2{0.9375, 0.5};
   ProtocolParams params;
-  params.kind = ProtocolKind::fixed_radius;
+  params.variant = VoronoiVariant::fixed_radius;
   params.fixed_radius = 0.3;
   FakeHost host;
   VoronoiProtocol p(host, params, unit_square(), 0.001);

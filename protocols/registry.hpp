@@ -1,0 +1,94 @@
+#pragma once
+// Protocols chosen by name. A protocol definition names the protocol, declares its parameter
+// keys, the message types robots and sensors hear, the extra per-update fields it reports, and
+// makes its robot and sensor objects. The built-ins (none, radius_doubling, oracle,
+// fixed_radius, gabriel) register through the same function as a user's protocol; a program
+// registers its own before it hands its arguments to masnet's command line
+// (docs/protocol-api.md).
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "net/messages.hpp"
+#include "protocols/density_scaling.hpp"
+#include "protocols/geometry.hpp"
+#include "protocols/host.hpp"
+#include "protocols/protocol.hpp"
+#include "protocols/protocol_params.hpp"
+#include "sim/log.hpp"
+#include "sim/random.hpp"
+
+namespace masnet::protocols {
+
+/// What every robot's protocol knows of the deployment.
+struct ProtocolContext {
+  ConvexPolygon domain;
+  DensityScaling scaling;
+  double max_range = 1.5;  ///< the radio's cap, world units
+  std::size_t robot_count = 0, sensor_count = 0;
+};
+
+/// What a robot protocol is made from.
+struct RobotSetup {
+  RobotHost& host;
+  std::size_t robot;  ///< this robot's number, 0..R−1
+  const ProtocolContext& context;
+  const ParamValues& params;  ///< the keys the definition declares, validated
+  /// This robot's own random stream (keyed by the run's seed and the robot): the same draws
+  /// whatever other nodes do. The built-ins draw their update phase from it first.
+  sim::RandomStream& random;
+  const sim::Log* log;  ///< may be null; MASNET_LOG writes through it (docs/logging.md)
+};
+
+/// What the sensors' protocol object is made from.
+struct SensorSetup {
+  const ProtocolContext& context;
+  const ParamValues& params;
+  const sim::Log* log;
+};
+
+using RobotFactory = std::function<std::unique_ptr<RobotProtocol>(const RobotSetup&)>;
+using SensorFactory = std::function<std::unique_ptr<SensorProtocol>(const SensorSetup&)>;
+
+struct ProtocolDefinition {
+  std::string name;     ///< `protocol.kind` in a scenario: lower case letters, digits, '_'
+  std::string summary;  ///< one line for `masnet protocols`
+  /// Keys under `protocol:`. A key another protocol also declares must be declared the same
+  /// way (one key, one meaning).
+  std::vector<ParamSpec> params;
+  /// Message types the radio hands to robots and to sensors (others are not delivered to them).
+  std::vector<net::MessageType> robots_hear, sensors_hear;
+  /// Names of the protocol's own per-update fields (UpdateSummary::extra): extra columns of
+  /// updates.csv.
+  std::vector<std::string> update_columns;
+  RobotFactory make_robot;
+  /// Empty: the paper's sensors (paper_sensors()).
+  SensorFactory make_sensor;
+};
+
+/// The sensors of the paper: each reports to the closest robot it heard announce itself, once,
+/// `reply_timeout` after the first announcement (0.002 s when the protocol declares no such
+/// key), and answers a SENSE whose cell holds it with its reading.
+SensorFactory paper_sensors();
+
+/// Registers `definition`. Throws std::invalid_argument when the name is taken or malformed, a
+/// key is declared differently by another protocol, or make_robot is empty.
+void register_protocol(ProtocolDefinition definition);
+/// The protocol registered under `name`, or null.
+const ProtocolDefinition* find_protocol(std::string_view name);
+/// Every protocol, in registration order (the built-ins first).
+std::vector<const ProtocolDefinition*> registered_protocols();
+
+inline constexpr std::string_view kDefaultProtocol = "radius_doubling";
+
+/// A run's protocol: its name and the values of the keys it declares.
+struct ProtocolChoice {
+  std::string kind = std::string(kDefaultProtocol);
+  ParamValues params = ParamValues::defaults(find_protocol(kDefaultProtocol)->params);
+};
+/// `kind` with every key at its default; throws std::invalid_argument if `kind` is unknown.
+ProtocolChoice choose_protocol(std::string_view kind);
+
+}  // namespace masnet::protocols
