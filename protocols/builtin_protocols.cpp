@@ -11,18 +11,21 @@ namespace masnet::protocols {
 
 void register_builtin(ProtocolDefinition definition, TruthfulRobotFactory truthful);  // registry.cpp
 
+ParamSpec update_period_param() {
+  return ParamSpec::real("period", 0.01, ParamRange::time(), "s",
+                         "Δt between a robot's updates (seeded phase)");
+}
+ParamSpec reply_timeout_param() {
+  return ParamSpec::real("reply_timeout", 0.002, ParamRange::time(), "s",
+                         "how long a round waits for replies");
+}
+
 namespace {
 
 using net::MessageType;
 
-ParamSpec period() {
-  return ParamSpec::real("period", 0.01, ParamRange::time(), "s",
-                         "Δt between a robot's updates (seeded phase)");
-}
-ParamSpec reply_timeout() {
-  return ParamSpec::real("reply_timeout", 0.002, ParamRange::time(), "s",
-                         "how long a round waits for replies");
-}
+ParamSpec period() { return update_period_param(); }
+ParamSpec reply_timeout() { return reply_timeout_param(); }
 
 // Every built-in hears the same types, so a run's radio counters do not depend on the kind.
 ProtocolDefinition builtin(std::string name, std::string summary, std::vector<ParamSpec> params) {

@@ -81,6 +81,13 @@ const ProtocolDefinition* find_protocol(std::string_view name);
 /// Every protocol, in registration order (the built-ins first).
 std::vector<const ProtocolDefinition*> registered_protocols();
 
+/// The keys every built-in message protocol declares, for a protocol of one's own to declare
+/// the same way (a key means one thing whatever the kind): `period`, the time between a robot's
+/// updates, and `reply_timeout`, how long a round waits for replies (also when the paper's
+/// sensors report).
+ParamSpec update_period_param();
+ParamSpec reply_timeout_param();
+
 inline constexpr std::string_view kDefaultProtocol = "radius_doubling";
 
 /// A run's protocol: its name and the values of the keys it declares.
