@@ -72,12 +72,14 @@ std::string ParamSpec::allowed_text() const {
     case ParamType::choice:
       return fmt::format("{}", fmt::join(choices, " | "));
     case ParamType::integer:
-      return fmt::format("[{}, {}]", static_cast<std::int64_t>(range.lo),
+      return fmt::format("{} … {}", static_cast<std::int64_t>(range.lo),
                          static_cast<std::int64_t>(range.hi));
     case ParamType::real:
       break;
   }
-  return fmt::format("{}{}, {}{}", range.lo_open ? "(" : "[", range.lo, range.hi,
+  constexpr double kUnbounded = 1e12;  // ParamRange's "no bound"
+  if (range.hi >= kUnbounded) return fmt::format("{} {:g}", range.lo_open ? ">" : "≥", range.lo);
+  return fmt::format("{}{:g}, {:g}{}", range.lo_open ? "(" : "[", range.lo, range.hi,
                      range.hi_open ? ")" : "]");
 }
 

@@ -45,7 +45,8 @@ struct ParamSpec {
                           std::string meaning);
   /// The default as the reference prints it ("0.01", "true", "to_2d").
   std::string default_text() const;
-  /// The allowed values as the reference prints them ("[1e-09, 1e+09]", "to_2d | double").
+  /// The allowed values as `masnet protocols` prints them ("> 0", "[1e-09, 1e+09]",
+  /// "0 … 1000000", "to_2d | double").
   std::string allowed_text() const;
   bool same_declaration(const ParamSpec& other) const;
 };
