@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
-#include "sim/cpus.hpp"
 #include "sim/free_slots.hpp"
 #include "sim/random.hpp"
 
@@ -12,65 +10,7 @@ namespace masnet::net {
 namespace {
 constexpr std::uint64_t kLossPurpose = sim::purpose("radio.loss");
 constexpr std::uint64_t kJitterPurpose = sim::purpose("radio.jitter");
-constexpr double kMobileMark = std::numeric_limits<double>::quiet_NaN();
 }  // namespace
-
-Radio::Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t seed)
-    : simulator_(simulator), params_(params), seed_(seed) {
-  MASNET_ASSERT(params.max_range > 0 && params.bitrate_bps > 0 && params.loss >= 0 &&
-                    params.loss <= 1 && params.latency_s >= 0 && params.jitter_s >= 0,
-                "radio parameters are validated by the scenario loader");
-  // Per-frame constants, computed once (each costs a rounding call or a square root).
-  crossover_m_ = params_.energy.crossover_m();
-  latency_ = sim::seconds(params_.latency_s);
-  for (std::uint32_t bytes = 0; bytes < kAirtimeTableBytes; ++bytes)
-    airtime_table_[bytes] = compute_airtime(bytes);
-}
-
-Radio::~Radio() {
-  if (!overhearing_thread_.joinable()) return;
-  drain_overhearing();
-  stop_worker_.store(true, std::memory_order_release);
-  jobs_published_.fetch_add(
-      1, std::memory_order_release);  // an empty hand-over wakes it to see the stop
-  jobs_published_.notify_one();
-  overhearing_thread_.join();
-}
-
-void Radio::add_node(NodeId id, Node node, bool mobile, const Vec2& position) {
-  MASNET_ASSERT(sim::index(id) == nodes_.size(), "node ids are dense from 0");
-  node.added_at = simulator_.now();
-  nodes_.push_back(node);
-  senders_.emplace_back();
-  hot_.push_back(kNoHotIndex);  // given by the next prepare_index()
-  // A mobile node's entry is NaN: the one array answers both "where" and "static or not".
-  positions_.push_back(mobile ? Vec2{kMobileMark, kMobileMark} : position);
-  index_dirty_ = true;
-  if (battery_limited() && params_.energy.idle_power_w > 0) schedule_depletion(id);
-}
-
-void Radio::add_static_node(NodeId id, const Vec2& position, std::uint64_t random_key) {
-  MASNET_ASSERT(std::isfinite(position.x()) && std::isfinite(position.y()),
-                "static nodes stand somewhere");
-  static_ids_.push_back(id);
-  Node node;
-  node.random_key = random_key;
-  add_node(id, node, false, position);
-}
-
-void Radio::add_mobile_node(NodeId id, std::uint64_t random_key) {
-  mobile_ids_.push_back(id);
-  mobile_index_valid_ = false;
-  mobile_cache_valid_ = false;
-  Node node;
-  node.random_key = random_key;
-  add_node(id, node, true, Vec2{0, 0});
-}
-
-void Radio::set_interest(NodeId node, std::uint32_t mask) {
-  nodes_[sim::index(node)].interest = mask;
-  index_dirty_ = true;  // the union of static interests decides which frames may be booked in bulk
-}
 
 Vec2 Radio::position(NodeId node) const {
   const Vec2& known = positions_[sim::index(node)];
@@ -127,14 +67,6 @@ bool Radio::unicast(NodeId source, NodeId destination, Payload payload) {
     --hearers;
   }
   return hearers;
-}
-
-void Radio::start_overhearing_thread() {
-  // Waiting by spinning pays only when the other thread has a processor of its own: with one,
-  // every spin takes the time the other needs to make progress (a lone run pinned to one core
-  // was 10-17 times slower). With one, both sides go to sleep at once.
-  spin_limit_ = sim::allowed_cpu_count() >= 2 ? kSpinLimit : 0;
-  overhearing_thread_ = std::thread([this] { overhearing_worker(); });
 }
 
 void Radio::wait_until_worker_behind_at_most(std::uint32_t behind) const {

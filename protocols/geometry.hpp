@@ -103,6 +103,8 @@ Cell voronoi_cell(std::uint32_t site, std::span<const Vec2> sites,
 /// layout costs O(n) cells × O(1) clips.
 std::vector<Cell> voronoi_cells(std::span<const Vec2> sites, const ConvexPolygon& domain);
 
+// Measures of one polygon: defined in polygon_measures.cpp, with the user-polygon checks above.
+
 /// Area (world units²) of a canonical (CCW) polygon, so >= 0; 0 for fewer than 3 vertices.
 double area(const ConvexPolygon& polygon);
 
