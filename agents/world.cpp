@@ -53,9 +53,8 @@ class World::RobotAgent final : public protocols::RobotHost {
     // The protocol's own stream: its first draw phases the built-ins' updates.
     auto random =
         sim::RandomStream::keyed(world.def_.seed, robot_key(index), sim::purpose("protocol.phase"));
-    const protocols::RobotSetup setup{*this,           index,
-                                      world.protocol_context_, world.def_.protocol.params,
-                                      random,          &world.log_};
+    const protocols::RobotSetup setup{
+        *this, index, world.protocol_context_, world.def_.protocol.params, random, &world.log_};
     protocol_ = world.truthful_factory_ ? (*world.truthful_factory_)(setup, world)
                                         : world.definition_->make_robot(setup);
   }

@@ -12,7 +12,9 @@ namespace {
 struct MessageCatalog {
   std::array<std::string, kMaxMessageTypes> names;
   std::atomic<std::size_t> count{kBuiltinMessageTypeCount};
-  MessageCatalog() { std::copy(kBuiltinMessageTypeNames.begin(), kBuiltinMessageTypeNames.end(), names.begin()); }
+  MessageCatalog() {
+    std::copy(kBuiltinMessageTypeNames.begin(), kBuiltinMessageTypeNames.end(), names.begin());
+  }
 };
 
 MessageCatalog& catalog() {

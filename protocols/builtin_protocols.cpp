@@ -9,7 +9,8 @@
 
 namespace masnet::protocols {
 
-void register_builtin(ProtocolDefinition definition, TruthfulRobotFactory truthful);  // registry.cpp
+void register_builtin(ProtocolDefinition definition,
+                      TruthfulRobotFactory truthful);  // registry.cpp
 
 ParamSpec update_period_param() {
   return ParamSpec::real("period", 0.01, ParamRange::time(), "s",
@@ -24,8 +25,12 @@ namespace {
 
 using net::MessageType;
 
-ParamSpec period() { return update_period_param(); }
-ParamSpec reply_timeout() { return reply_timeout_param(); }
+ParamSpec period() {
+  return update_period_param();
+}
+ParamSpec reply_timeout() {
+  return reply_timeout_param();
+}
 
 // Every built-in hears the same types, so a run's radio counters do not depend on the kind.
 ProtocolDefinition builtin(std::string name, std::string summary, std::vector<ParamSpec> params) {
@@ -81,9 +86,8 @@ void register_builtin_protocols() {
       {period(), reply_timeout(),
        ParamSpec::choice("growth", "to_2d", {"to_2d", "double"},
                          "R ← 2d (the paper) or R ← 2R (Cortés)"),
-       ParamSpec::choice(
-           "criterion", "sensors", {"sensors", "vertices"},
-           "d = farthest reading sensor (paper) or farthest cell vertex (Cortés)"),
+       ParamSpec::choice("criterion", "sensors", {"sensors", "vertices"},
+                         "d = farthest reading sensor (paper) or farthest cell vertex (Cortés)"),
        ParamSpec::boolean("shrink_on_stop", false, "on stop set R ← 2d exactly (Cortés)"),
        ParamSpec::integer("decay.patience", 3, 0, 1000000, "updates",
                           "unchanged updates before R shrinks; 0 = never"),
@@ -93,16 +97,15 @@ void register_builtin_protocols() {
   doubling.make_robot = voronoi(VoronoiVariant::radius_doubling);
   register_builtin(std::move(doubling), {});
 
-  ProtocolDefinition oracle =
-      builtin("oracle", "the exact cell from true positions, zero messages (the reference)",
-              {period()});
-  register_builtin(std::move(oracle), [](const RobotSetup& s, GroundTruth& truth)
-                                          -> std::unique_ptr<RobotProtocol> {
-    const double period_s = s.params.real("period");
-    const double phase_s = s.random.uniform(0.0, period_s);
-    return std::make_unique<OracleProtocol>(s.host, truth, s.robot, s.context, period_s, phase_s,
-                                            s.log);
-  });
+  ProtocolDefinition oracle = builtin(
+      "oracle", "the exact cell from true positions, zero messages (the reference)", {period()});
+  register_builtin(std::move(oracle),
+                   [](const RobotSetup& s, GroundTruth& truth) -> std::unique_ptr<RobotProtocol> {
+                     const double period_s = s.params.real("period");
+                     const double phase_s = s.random.uniform(0.0, period_s);
+                     return std::make_unique<OracleProtocol>(s.host, truth, s.robot, s.context,
+                                                             period_s, phase_s, s.log);
+                   });
 
   ProtocolDefinition fixed = builtin(
       "fixed_radius", "one DISCOVER round with a constant radius",
@@ -111,9 +114,9 @@ void register_builtin_protocols() {
   fixed.make_robot = voronoi(VoronoiVariant::fixed_radius);
   register_builtin(std::move(fixed), {});
 
-  ProtocolDefinition gabriel = builtin(
-      "gabriel", "one round at max range; only Gabriel neighbours bound the cell",
-      {period(), reply_timeout()});
+  ProtocolDefinition gabriel =
+      builtin("gabriel", "one round at max range; only Gabriel neighbours bound the cell",
+              {period(), reply_timeout()});
   gabriel.make_robot = voronoi(VoronoiVariant::gabriel);
   register_builtin(std::move(gabriel), {});
 }

@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <vector>
 
-
 namespace masnet::protocols {
 
 namespace {
@@ -30,7 +29,8 @@ std::string allowed_markdown(const ParamSpec& spec) {
   if (spec.type == ParamType::boolean) return "—";
   if (spec.type != ParamType::choice) return spec.allowed_text();
   std::string out;
-  for (const std::string& c : spec.choices) out += (out.empty() ? "`" : ", `") + c + "`";
+  for (const std::string& c : spec.choices)
+    out += (out.empty() ? "`" : ", `") + c + "`";
   return out;
 }
 
@@ -38,7 +38,9 @@ std::string default_markdown(const ParamSpec& spec) {
   return spec.type == ParamType::choice ? "`" + spec.default_text() + "`" : spec.default_text();
 }
 
-std::string or_dash(const std::string& text) { return text.empty() ? "—" : text; }
+std::string or_dash(const std::string& text) {
+  return text.empty() ? "—" : text;
+}
 
 }  // namespace
 
@@ -54,17 +56,21 @@ std::string protocol_listing_text() {
   return out;
 }
 
-std::string protocol_table_markdown() { return protocol_table_markdown(registered_protocols()); }
+std::string protocol_table_markdown() {
+  return protocol_table_markdown(registered_protocols());
+}
 
 std::string protocol_table_markdown(const std::vector<const ProtocolDefinition*>& all) {
   std::string kinds;
-  for (const ProtocolDefinition* d : all) kinds += (kinds.empty() ? "`" : ", `") + d->name + "`";
+  for (const ProtocolDefinition* d : all)
+    kinds += (kinds.empty() ? "`" : ", `") + d->name + "`";
   std::string out =
       "| key | type | default | allowed | unit | kind | meaning |\n"
       "|---|---|---|---|---|---|---|\n";
-  out += fmt::format("| `kind` | choice | `{}` | {} | — | — | the protocol; `masnet protocols` "
-                     "lists each with its keys |\n",
-                     kDefaultProtocol, kinds);
+  out += fmt::format(
+      "| `kind` | choice | `{}` | {} | — | — | the protocol; `masnet protocols` "
+      "lists each with its keys |\n",
+      kDefaultProtocol, kinds);
   std::vector<std::string> done;
   for (const ProtocolDefinition* d : all)
     for (const ParamSpec& p : d->params) {

@@ -38,8 +38,8 @@ struct ParamSpec {
 
   static ParamSpec real(std::string key, double fallback, ParamRange range, std::string unit,
                         std::string meaning);
-  static ParamSpec integer(std::string key, std::int64_t fallback, std::int64_t lo,
-                           std::int64_t hi, std::string unit, std::string meaning);
+  static ParamSpec integer(std::string key, std::int64_t fallback, std::int64_t lo, std::int64_t hi,
+                           std::string unit, std::string meaning);
   static ParamSpec boolean(std::string key, bool fallback, std::string meaning);
   static ParamSpec choice(std::string key, std::string fallback, std::vector<std::string> choices,
                           std::string meaning);

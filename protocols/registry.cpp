@@ -35,8 +35,8 @@ bool is_protocol_name(std::string_view name) {
 
 void add(ProtocolDefinition definition, TruthfulRobotFactory truthful) {
   if (!is_protocol_name(definition.name))
-    throw std::invalid_argument(fmt::format(
-        "protocol name '{}': use lower case letters, digits and '_'", definition.name));
+    throw std::invalid_argument(
+        fmt::format("protocol name '{}': use lower case letters, digits and '_'", definition.name));
   if (!definition.make_robot && !truthful)
     throw std::invalid_argument(fmt::format("protocol {}: make_robot is empty", definition.name));
   for (const Entry& entry : entries()) {

@@ -34,7 +34,8 @@ struct RangeDecay {
   double min = 0.02;           ///< R_min, world units: the floor, and R when nobody reports
 };
 
-/// The variants' rules, read from the scenario's `protocol:` keys (protocols/builtin_protocols.cpp).
+/// The variants' rules, read from the scenario's `protocol:` keys
+/// (protocols/builtin_protocols.cpp).
 struct ProtocolParams {
   VoronoiVariant variant = VoronoiVariant::radius_doubling;
   double period_s = 0.01;  ///< Δt between updates (paper: 0.01 s)

@@ -85,7 +85,8 @@ class HelloCells final : public mp::RobotProtocol {
       sites.push_back(robot.position);
     }
     mp::Cell cell = mp::voronoi_cell(0, sites, candidates, context_.domain);
-    for (std::uint32_t site : cell.neighbours) record_.neighbours.push_back(record_.heard[site - 1].robot);
+    for (std::uint32_t site : cell.neighbours)
+      record_.neighbours.push_back(record_.heard[site - 1].robot);
     std::sort(record_.neighbours.begin(), record_.neighbours.end());
     record_.cell = std::move(cell.polygon);
     record_.extra = {static_cast<double>(record_.heard.size())};  // the column "robots_heard"
@@ -97,9 +98,9 @@ class HelloCells final : public mp::RobotProtocol {
     record_.messages.add(hello_, host_.broadcast(hello_range_, std::move(hello)));
     if (record_.cell.vertices.empty()) return finish_update();
     const double sense_range = mp::max_vertex_distance(record_.cell, record_.position);
-    record_.messages.add(mn::MessageType::sense,
-                         host_.broadcast(sense_range, mn::Sense{host_.id(), record_.update,
-                                                                 record_.cell.vertices}));
+    record_.messages.add(
+        mn::MessageType::sense,
+        host_.broadcast(sense_range, mn::Sense{host_.id(), record_.update, record_.cell.vertices}));
     host_.set_timer(seconds(reply_timeout_s_), kSenseEnd);
   }
 
@@ -145,10 +146,9 @@ int main(int argc, char** argv) {
   mp::ProtocolDefinition definition;
   definition.name = "hello_cells";
   definition.summary = "one HELLO broadcast a period at a fixed range; cells from what was heard";
-  definition.params = {
-      mp::update_period_param(), mp::reply_timeout_param(),
-      mp::ParamSpec::real("hello_range", 0.4, mp::ParamRange::between(0.01, 10.0), "world units",
-                          "how far a HELLO reaches")};
+  definition.params = {mp::update_period_param(), mp::reply_timeout_param(),
+                       mp::ParamSpec::real("hello_range", 0.4, mp::ParamRange::between(0.01, 10.0),
+                                           "world units", "how far a HELLO reaches")};
   definition.robots_hear = {hello, mn::MessageType::reading};
   definition.sensors_hear = {mn::MessageType::sense};
   definition.update_columns = {"robots_heard"};

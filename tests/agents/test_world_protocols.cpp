@@ -32,10 +32,10 @@ WorldDef layout(std::uint64_t seed, protocols::StopCriterion criterion, double l
   def.radio.max_range = 1.5;
   def.radio.loss = loss;
   def.protocol = protocols::choose_protocol("radius_doubling");  // decay: patience 3, step and
-                                                                  // min 0.02
-  def.protocol.params.set("criterion", std::string(criterion == protocols::StopCriterion::vertices
-                                                       ? "vertices"
-                                                       : "sensors"));
+                                                                 // min 0.02
+  def.protocol.params.set(
+      "criterion",
+      std::string(criterion == protocols::StopCriterion::vertices ? "vertices" : "sensors"));
   return def;
 }
 

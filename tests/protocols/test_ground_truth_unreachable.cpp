@@ -10,12 +10,20 @@ namespace mp = masnet::protocols;
 namespace {
 
 template <typename T>
-concept offers_true_cells = requires(T& t) { t.true_cell(std::size_t{0}); };
+concept offers_true_cells = requires(T& t) {
+  t.true_cell(std::size_t{0});
+};
 template <typename T>
-concept reads_sensors_without_messages =
-    requires(T& t, mp::CentroidAccumulator& a) { t.read_sensors_in(mp::ConvexPolygon{}, a); };
+concept reads_sensors_without_messages = requires(T& t, mp::CentroidAccumulator& a) {
+  t.read_sensors_in(mp::ConvexPolygon{}, a);
+};
 template <typename T>
-concept hands_out_ground_truth = requires(T& t) { t.truth; } || requires(T& t) { t.ground_truth; };
+concept hands_out_ground_truth = requires(T& t) {
+  t.truth;
+}
+|| requires(T& t) {
+  t.ground_truth;
+};
 
 // The concepts detect the members they look for (so the checks below can fail).
 struct Leaky {
@@ -43,7 +51,8 @@ TEST_CASE("No host or setup a protocol is given reaches ground truth", "[protoco
 TEST_CASE("Protocols registered by name: built-ins first, user protocols after, names checked",
           "[protocols]") {
   std::vector<std::string> names;
-  for (const mp::ProtocolDefinition* d : mp::registered_protocols()) names.push_back(d->name);
+  for (const mp::ProtocolDefinition* d : mp::registered_protocols())
+    names.push_back(d->name);
   REQUIRE(names.size() >= 5);
   CHECK(std::vector<std::string>(names.begin(), names.begin() + 5) ==
         std::vector<std::string>{"none", "radius_doubling", "oracle", "fixed_radius", "gabriel"});

@@ -53,8 +53,7 @@ TEST_CASE("a sensor answers every SENSE whose cell holds it, and only those, SEN
     protocol.on_frame(*host, sense(0, 7, left));
     protocol.on_frame(*host, sense(0, 8, right));  // same robot, next frame
     protocol.on_frame(*host, sense(1, 8, left));   // another robot, same number
-    protocol.on_frame(*host,
-                      sense(1, 9, std::vector<Vec2>{Vec2{0, 0}, Vec2{1, 0}}));  // no polygon
+    protocol.on_frame(*host, sense(1, 9, std::vector<Vec2>{Vec2{0, 0}, Vec2{1, 0}}));  // no polygon
   }
   CHECK(in_left.replied_to == std::vector<NodeId>{sim::node_id(0), sim::node_id(1)});
   // On the shared edge: inside both cells (the boundary belongs to each).
