@@ -14,14 +14,16 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
-#include "scenarios/figures.hpp"
-#include "scenarios/output_file.hpp"
-#include "scenarios/progress.hpp"
-#include "scenarios/report.hpp"
-#include "scenarios/run.hpp"
-#include "scenarios/run_directory.hpp"
-#include "scenarios/scenario.hpp"
-#include "scenarios/sweep_command.hpp"
+#include "scenarios/cli/command_line.hpp"
+#include "scenarios/cli/sweep_command.hpp"
+#include "scenarios/loader/scenario.hpp"
+#include "scenarios/output/output_file.hpp"
+#include "scenarios/report/figures.hpp"
+#include "scenarios/report/report.hpp"
+#include "scenarios/run/progress.hpp"
+#include "scenarios/run/run.hpp"
+#include "scenarios/run/run_directory.hpp"
+#include "scenarios/run/sensors_csv.hpp"
 #include "sim/cpus.hpp"
 #include "sim/log.hpp"
 
@@ -287,6 +289,8 @@ int command_validate(const std::string& scenario, const std::vector<std::string>
 
 }  // namespace
 
+namespace masnet::cli {
+
 int main(int argc, char** argv) {
   CLI::App app{"masnet — discrete-event simulator of mobile actuator/sensor networks"};
   app.require_subcommand(1);
@@ -349,3 +353,5 @@ int main(int argc, char** argv) {
   }
   return kInternalError;
 }
+
+}  // namespace masnet::cli

@@ -1,4 +1,4 @@
-#include "scenarios/sweep_command.hpp"
+#include "scenarios/cli/sweep_command.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -12,8 +12,8 @@
 #include <unistd.h>
 #include <CLI/CLI.hpp>
 
-#include "scenarios/run_directory.hpp"
-#include "scenarios/sweep.hpp"
+#include "scenarios/run/run_directory.hpp"
+#include "scenarios/sweep/sweep.hpp"
 #include "sim/cpus.hpp"
 
 #ifdef MASNET_HAVE_MPI

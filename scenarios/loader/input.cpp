@@ -1,4 +1,4 @@
-#include "scenarios/input.hpp"
+#include "scenarios/loader/input.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>

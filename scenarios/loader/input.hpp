@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include "scenarios/reader.hpp"
+#include "scenarios/loader/reader.hpp"
 
 namespace masnet::scenarios {
 

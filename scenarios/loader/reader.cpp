@@ -1,4 +1,4 @@
-#include "scenarios/reader.hpp"
+#include "scenarios/loader/reader.hpp"
 
 #include <algorithm>
 #include <cmath>

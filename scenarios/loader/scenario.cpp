@@ -1,4 +1,4 @@
-#include "scenarios/scenario.hpp"
+#include "scenarios/loader/scenario.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <limits>
 #include <sstream>
 
-#include "scenarios/input.hpp"
-#include "scenarios/scenario_parts.hpp"
+#include "scenarios/loader/input.hpp"
+#include "scenarios/loader/scenario_parts.hpp"
 
 namespace masnet::scenarios {
 namespace {

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "agents/world.hpp"
-#include "scenarios/reader.hpp"
+#include "scenarios/loader/reader.hpp"
 
 namespace masnet::scenarios {
 

@@ -7,8 +7,8 @@
 #include <sstream>
 #include <string_view>
 
-#include "scenarios/input.hpp"
-#include "scenarios/scenario_parts.hpp"
+#include "scenarios/loader/input.hpp"
+#include "scenarios/loader/scenario_parts.hpp"
 #include "sim/random.hpp"
 
 namespace masnet::scenarios {

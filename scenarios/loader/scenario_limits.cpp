@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "scenarios/scenario_parts.hpp"
+#include "scenarios/loader/scenario_parts.hpp"
 
 namespace masnet::scenarios {
 namespace {
@@ -43,8 +43,9 @@ void check_work(const ScenarioDef& def, std::size_t sensor_count, const NodeCaps
   std::vector<Work> work;
   // A protocol that updates periodically declares `period` (the built-ins but `none` do).
   if (def.world.protocol.params.has("period"))
-    work.push_back({"protocol updates", duration / def.world.protocol.params.real("period") * robots,
-                    &at.protocol, "period"});
+    work.push_back({"protocol updates",
+                    duration / def.world.protocol.params.real("period") * robots, &at.protocol,
+                    "period"});
   using agents::BeaconSenders;
   const BeaconSenders senders = def.world.beacons.senders;
   if (senders != BeaconSenders::none) {

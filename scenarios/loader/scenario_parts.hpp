@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "agents/world.hpp"
-#include "scenarios/reader.hpp"
-#include "scenarios/scenario.hpp"
+#include "scenarios/loader/reader.hpp"
+#include "scenarios/loader/scenario.hpp"
 
 namespace masnet::scenarios {
 

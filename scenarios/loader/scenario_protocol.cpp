@@ -2,7 +2,7 @@
 // program's own protocols' keys are checked the same way (docs/protocol-api.md).
 #include <map>
 
-#include "scenarios/scenario_parts.hpp"
+#include "scenarios/loader/scenario_parts.hpp"
 
 namespace masnet::scenarios {
 namespace {
@@ -53,7 +53,7 @@ protocols::ProtocolChoice read_protocol(Section s) {
 
   // Every protocol's keys, in registration order: a key of another kind is still checked (a
   // sweep may vary the kind under a fixed set of keys), and resolved with its default.
-  std::vector<std::string> tops;                         // top-level keys, first seen first
+  std::vector<std::string> tops;                          // top-level keys, first seen first
   std::map<std::string, std::vector<std::string>> kinds;  // top-level key -> kinds declaring it
   std::map<std::string, Section> nested;
   std::vector<std::string> read;
@@ -84,7 +84,8 @@ protocols::ProtocolChoice read_protocol(Section s) {
   // changed an oracle run.
   for (const std::string& top : tops) {
     const auto& declaring = kinds[top];
-    if (!s.has(top) || std::find(declaring.begin(), declaring.end(), choice.kind) != declaring.end())
+    if (!s.has(top) ||
+        std::find(declaring.begin(), declaring.end(), choice.kind) != declaring.end())
       continue;
     s.warn_at(top, "applies to protocol kind " + listed(declaring) + ", not " + choice.kind +
                        ": it is ignored");

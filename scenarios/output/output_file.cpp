@@ -1,4 +1,4 @@
-#include "scenarios/output_file.hpp"
+#include "scenarios/output/output_file.hpp"
 
 #include <cerrno>
 #include <cstring>

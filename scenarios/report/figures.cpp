@@ -1,4 +1,4 @@
-#include "scenarios/figures.hpp"
+#include "scenarios/report/figures.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -14,8 +14,8 @@
 #include <fmt/compile.h>
 #include <fmt/format.h>
 
-#include "agents/targets.hpp"
-#include "scenarios/output_file.hpp"
+#include "scenarios/output/output_file.hpp"
+#include "scenarios/report/target_paths.hpp"
 
 namespace masnet::scenarios {
 namespace fs = std::filesystem;
@@ -348,32 +348,6 @@ void draw_snapshot(cairo_t* cr, const RunData& run, const json& snap,
                    colour_label(run, colours, on_grid));
 }
 
-// A path of a target or source from the resolved scenario: {start, velocity} or waypoints,
-// possibly nested under "path" (Gaussian bumps).
-std::optional<agents::PathDef> path_from_json(const json& item) {
-  if (!item.is_object()) return std::nullopt;
-  const json& p = item.contains("path") && item["path"].is_object() ? item["path"] : item;
-  agents::PathDef d;
-  auto vec = [](const json& j) { return net::Vec2{j.at(0).get<double>(), j.at(1).get<double>()}; };
-  try {
-    if (p.contains("waypoints") && p["waypoints"].is_array())
-      for (const json& w : p["waypoints"])
-        d.waypoints.push_back(vec(w));
-    if (p.contains("start"))
-      d.start = vec(p["start"]);
-    else if (p.contains("position"))
-      d.start = vec(p["position"]);
-    else if (d.waypoints.empty())
-      return std::nullopt;
-    if (p.contains("velocity")) d.velocity = vec(p["velocity"]);
-    d.speed = p.value("speed", 0.0);
-    d.loop = p.value("loop", false);
-  } catch (const json::exception&) {
-    return std::nullopt;
-  }
-  return d;
-}
-
 // The paths of the targets/sources over the run, sampled 200 times; from the resolved
 // scenario, or else through their positions at the snapshot times.
 std::vector<std::vector<Point>> source_paths(const RunData& run) {
@@ -382,14 +356,12 @@ std::vector<std::vector<Point>> source_paths(const RunData& run) {
   for (const char* key : {"targets", "sources", "bumps"}) {
     if (!field.contains(key) || !field[key].is_array()) continue;
     for (const json& item : field[key]) {
-      const std::optional<agents::PathDef> def = path_from_json(item);
+      const std::optional<TargetPath> def = target_path_from_json(item);
       if (!def) continue;
       std::vector<Point> path;
       constexpr int kSamples = 200;
-      for (int k = 0; k <= kSamples; ++k) {
-        const net::Vec2 p = agents::position_on(*def, run.duration_s * k / kSamples);
-        path.push_back({p.x(), p.y()});
-      }
+      for (int k = 0; k <= kSamples; ++k)
+        path.push_back(position_on(*def, run.duration_s * k / kSamples));
       paths.push_back(std::move(path));
     }
   }
@@ -837,23 +809,6 @@ RunData load_run_data(const fs::path& dir) {
   return run;
 }
 
-void write_sensors_csv(const fs::path& path, const std::vector<agents::SensorDef>& sensors) {
-  OutputFile out(path);
-  out.print("index,x,y,area\n");
-  // Compiled formats into a buffer written in large pieces (a million sensors: 27 MB).
-  fmt::memory_buffer rows;
-  for (std::size_t i = 0; i < sensors.size(); ++i) {
-    fmt::format_to(std::back_inserter(rows), FMT_COMPILE("{},{},{},{}\n"), i,
-                   sensors[i].position.x(), sensors[i].position.y(), sensors[i].area);
-    if (rows.size() >= std::size_t{1} << 16) {
-      out.write(std::string_view(rows.data(), rows.size()));
-      rows.clear();
-    }
-  }
-  out.write(std::string_view(rows.data(), rows.size()));
-  out.close();
-}
-
 // ---------------------------------------------------------------------------------------------
 // Writing the figures
 
@@ -877,7 +832,7 @@ std::vector<FigureInfo> write_figures(const RunData& run, const fs::path& figure
   std::vector<FigureInfo> figures;
   auto add = [&](FigureInfo info, double w, double h, const std::function<void(cairo_t*)>& draw,
                  const std::vector<plot::SvgClass>& classes = {}) {
-    plot::write_figure(figures_dir / info.stem, w, h, draw, classes);
+    plot::write_figure(write_file, figures_dir / info.stem, w, h, draw, classes);
     figures.push_back(std::move(info));
   };
 

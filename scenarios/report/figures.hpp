@@ -12,8 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "agents/world.hpp"
-#include "scenarios/plot.hpp"
+#include "scenarios/report/plot/plot.hpp"
 
 namespace masnet::scenarios {
 
@@ -57,11 +56,6 @@ struct RunData {
 /// rows of nodes.csv in runs written before it existed. Throws std::runtime_error naming the
 /// file that is missing or malformed.
 RunData load_run_data(const std::filesystem::path& dir);
-
-/// Writes sensors.csv: index, x, y (world units) and area (world units², the part of Ω the
-/// sensor stands for), one row per sensor in the order of snapshots.json's readings.
-void write_sensors_csv(const std::filesystem::path& path,
-                       const std::vector<agents::SensorDef>& sensors);
 
 /// Switches of the snapshot figures (`masnet render --no-oracle-cells --radius-circles`).
 struct FigureOptions {

@@ -1,4 +1,4 @@
-#include "scenarios/report.hpp"
+#include "scenarios/report/report.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "scenarios/output_file.hpp"
+#include "scenarios/output/output_file.hpp"
 
 namespace masnet::scenarios {
 namespace fs = std::filesystem;

@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "scenarios/figures.hpp"
+#include "scenarios/report/figures.hpp"
 
 namespace masnet::scenarios {
 

@@ -1,4 +1,4 @@
-#include "scenarios/progress.hpp"
+#include "scenarios/run/progress.hpp"
 
 #include <algorithm>
 #include <cmath>

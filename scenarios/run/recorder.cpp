@@ -1,4 +1,4 @@
-#include "scenarios/recorder.hpp"
+#include "scenarios/run/recorder.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 
 #include "protocols/heard_cell.hpp"
-#include "scenarios/output_file.hpp"
+#include "scenarios/output/output_file.hpp"
 
 namespace masnet::scenarios {
 namespace {

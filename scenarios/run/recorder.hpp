@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "agents/world.hpp"
-#include "scenarios/scenario.hpp"
+#include "scenarios/loader/scenario.hpp"
 
 namespace masnet::scenarios {
 

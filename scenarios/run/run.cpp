@@ -1,10 +1,10 @@
-#include "scenarios/run.hpp"
+#include "scenarios/run/run.hpp"
 
 #include <chrono>
 #include <filesystem>
 
-#include "scenarios/output_file.hpp"
-#include "scenarios/run_warnings.hpp"
+#include "scenarios/output/output_file.hpp"
+#include "scenarios/run/run_warnings.hpp"
 #include "sim/fingerprint.hpp"
 #include "sim/log.hpp"
 

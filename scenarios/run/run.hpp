@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scenarios/recorder.hpp"
-#include "scenarios/scenario.hpp"
+#include "scenarios/loader/scenario.hpp"
+#include "scenarios/run/recorder.hpp"
 
 namespace masnet::scenarios {
 

@@ -1,4 +1,4 @@
-#include "scenarios/run_directory.hpp"
+#include "scenarios/run/run_directory.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scenarios/output_file.hpp"
+#include "scenarios/output/output_file.hpp"
 
 namespace masnet::scenarios {
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "scenarios/run_warnings.hpp"
+#include "scenarios/run/run_warnings.hpp"
 
 #include <fmt/format.h>
 

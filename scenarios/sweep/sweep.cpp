@@ -1,4 +1,4 @@
-#include "scenarios/sweep.hpp"
+#include "scenarios/sweep/sweep.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -21,14 +21,15 @@
 #include <boost/asio/post.hpp>
 #include <boost/asio/thread_pool.hpp>
 
-#include "scenarios/figures.hpp"
-#include "scenarios/input.hpp"
-#include "scenarios/output_file.hpp"
-#include "scenarios/run.hpp"
-#include "scenarios/run_directory.hpp"
-#include "scenarios/scenario.hpp"
-#include "scenarios/sweep_report.hpp"
-#include "scenarios/sweep_statistics.hpp"
+#include "scenarios/loader/input.hpp"
+#include "scenarios/loader/scenario.hpp"
+#include "scenarios/output/output_file.hpp"
+#include "scenarios/report/figures.hpp"
+#include "scenarios/run/run.hpp"
+#include "scenarios/run/run_directory.hpp"
+#include "scenarios/run/sensors_csv.hpp"
+#include "scenarios/sweep/sweep_report.hpp"
+#include "scenarios/sweep/sweep_statistics.hpp"
 
 namespace masnet::scenarios {
 namespace fs = std::filesystem;

@@ -18,7 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scenarios/reader.hpp"
+#include "scenarios/loader/reader.hpp"
 
 namespace masnet::scenarios {
 

@@ -1,4 +1,4 @@
-#include "scenarios/sweep_report.hpp"
+#include "scenarios/sweep/sweep_report.hpp"
 
 #include <algorithm>
 #include <ctime>
@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "scenarios/report.hpp"
+#include "scenarios/report/report.hpp"
 
 namespace masnet::scenarios {
 namespace fs = std::filesystem;

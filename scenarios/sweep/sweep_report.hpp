@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "scenarios/sweep_statistics.hpp"
+#include "scenarios/sweep/sweep_statistics.hpp"
 
 namespace masnet::scenarios {
 

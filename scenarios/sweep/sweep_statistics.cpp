@@ -1,4 +1,4 @@
-#include "scenarios/sweep_statistics.hpp"
+#include "scenarios/sweep/sweep_statistics.hpp"
 
 #include <cmath>
 #include <map>
@@ -7,7 +7,7 @@
 #include <sqlite3.h>
 #include <boost/math/distributions/students_t.hpp>
 
-#include "scenarios/sweep.hpp"
+#include "scenarios/sweep/sweep.hpp"
 
 namespace masnet::scenarios {
 

@@ -1,4 +1,4 @@
-#include "scenarios/plot.hpp"
+#include "scenarios/report/plot/plot.hpp"
 
 #include <algorithm>
 #include <array>
@@ -14,8 +14,6 @@
 #include <cairo-svg.h>
 #include <cairo.h>
 #include <fmt/format.h>
-
-#include "scenarios/output_file.hpp"
 
 namespace masnet::scenarios::plot {
 namespace {
@@ -819,9 +817,9 @@ std::string finish_svg(std::string svg, const std::vector<SvgClass>& classes) {
   return tagged;
 }
 
-void write_figure(const std::filesystem::path& stem, double width, double height,
-                  const std::function<void(cairo_t*)>& draw, const std::vector<SvgClass>& classes,
-                  double png_scale) {
+void write_figure(const FileWriter& write, const std::filesystem::path& stem, double width,
+                  double height, const std::function<void(cairo_t*)>& draw,
+                  const std::vector<SvgClass>& classes, double png_scale) {
   auto paint = [&](cairo_t* cr) {
     cairo_set_source_rgb(cr, 1, 1, 1);
     cairo_paint(cr);
@@ -844,7 +842,7 @@ void write_figure(const std::filesystem::path& stem, double width, double height
     cairo_surface_destroy(surface);
     check(drawn, svg_path);
     check(finished, svg_path);
-    write_file(svg_path, finish_svg(std::move(svg), classes));
+    write(svg_path, finish_svg(std::move(svg), classes));
   }
   {
     const int w = static_cast<int>(std::lround(width * png_scale)),
@@ -855,7 +853,7 @@ void write_figure(const std::filesystem::path& stem, double width, double height
     paint(cr);
     const cairo_status_t drawn = cairo_status(cr);
     cairo_destroy(cr);
-    // Encoded in memory and written by write_file, whose errors name the system's reason
+    // Encoded in memory and stored by `write`, whose errors name the system's reason
     // (Cairo's own file writer says only "error while writing to output stream").
     std::string png;
     const cairo_status_t encoded =
@@ -864,7 +862,7 @@ void write_figure(const std::filesystem::path& stem, double width, double height
             : drawn;
     cairo_surface_destroy(surface);
     check(encoded, png_path);
-    write_file(png_path, png);
+    write(png_path, png);
   }
 }
 

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 typedef struct _cairo
@@ -163,12 +164,15 @@ struct SvgClass {
   std::string name;
 };
 
-/// Writes `stem`.svg and `stem`.png of `width` × `height` pixels by calling `draw` twice
-/// (the PNG at `png_scale` device pixels per pixel). The SVG's generated ids are renumbered
-/// so that the same drawing gives byte-identical files in any process. Throws
-/// std::runtime_error when a file cannot be written.
-void write_figure(const std::filesystem::path& stem, double width, double height,
-                  const std::function<void(cairo_t*)>& draw,
+/// Stores a file's bytes: the caller's writer, which throws when the file cannot be written.
+using FileWriter = std::function<void(const std::filesystem::path&, std::string_view)>;
+
+/// Writes `stem`.svg and `stem`.png of `width` × `height` pixels through `write` by calling
+/// `draw` twice (the PNG at `png_scale` device pixels per pixel). The SVG's generated ids are
+/// renumbered so that the same drawing gives byte-identical files in any process. Throws
+/// std::runtime_error when Cairo fails, and whatever `write` throws.
+void write_figure(const FileWriter& write, const std::filesystem::path& stem, double width,
+                  double height, const std::function<void(cairo_t*)>& draw,
                   const std::vector<SvgClass>& classes = {}, double png_scale = 1.0);
 
 /// The post-processing of write_figure on SVG text (exposed for tests).

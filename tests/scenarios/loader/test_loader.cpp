@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "loader_helpers.hpp"
-#include "scenarios/scenario.hpp"
+#include "scenarios/loader/scenario.hpp"
 
 namespace fs = std::filesystem;
 using namespace masnet::scenarios;

@@ -12,7 +12,7 @@
 #include <sstream>
 #include <string>
 
-#include "scenarios/scenario.hpp"
+#include "scenarios/loader/scenario.hpp"
 #include "text_files.hpp"
 
 using namespace masnet::scenarios;

@@ -15,9 +15,9 @@
 #include <unistd.h>
 #include <nlohmann/json.hpp>
 
-#include "scenarios/figures.hpp"
-#include "scenarios/plot.hpp"
-#include "scenarios/report.hpp"
+#include "scenarios/report/figures.hpp"
+#include "scenarios/report/plot/plot.hpp"
+#include "scenarios/report/report.hpp"
 #include "short_run.hpp"
 #include "text_files.hpp"
 

@@ -12,8 +12,8 @@
 #include <unistd.h>
 
 #include "headless_chromium.hpp"
-#include "scenarios/figures.hpp"
-#include "scenarios/report.hpp"
+#include "scenarios/report/figures.hpp"
+#include "scenarios/report/report.hpp"
 #include "short_run.hpp"
 #include "text_files.hpp"
 

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "scenarios/run.hpp"
-#include "scenarios/scenario.hpp"
+#include "scenarios/loader/scenario.hpp"
+#include "scenarios/run/run.hpp"
 
 using namespace masnet;
 using namespace masnet::scenarios;

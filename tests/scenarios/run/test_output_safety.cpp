@@ -16,8 +16,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "scenarios/output_file.hpp"
-#include "scenarios/run_directory.hpp"
+#include "scenarios/output/output_file.hpp"
+#include "scenarios/run/run_directory.hpp"
 #include "text_files.hpp"
 
 using namespace masnet::scenarios;

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "scenarios/progress.hpp"
+#include "scenarios/run/progress.hpp"
 
 using masnet::scenarios::ProgressBar;
 

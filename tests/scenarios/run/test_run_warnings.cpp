@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "scenarios/run_warnings.hpp"
+#include "scenarios/run/run_warnings.hpp"
 #include "text_files.hpp"
 
 using namespace masnet::scenarios;

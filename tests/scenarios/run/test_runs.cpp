@@ -8,8 +8,8 @@
 #include <map>
 #include <sstream>
 
-#include "scenarios/run.hpp"
-#include "scenarios/scenario.hpp"
+#include "scenarios/loader/scenario.hpp"
+#include "scenarios/run/run.hpp"
 
 using namespace masnet;
 using namespace masnet::scenarios;

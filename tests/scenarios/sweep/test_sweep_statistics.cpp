@@ -13,8 +13,8 @@
 
 #include <sqlite3.h>
 
-#include "scenarios/sweep.hpp"
-#include "scenarios/sweep_statistics.hpp"
+#include "scenarios/sweep/sweep.hpp"
+#include "scenarios/sweep/sweep_statistics.hpp"
 
 using namespace masnet::scenarios;
 namespace fs = std::filesystem;

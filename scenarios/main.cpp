@@ -1,0 +1,5 @@
+#include "scenarios/cli/command_line.hpp"
+
+int main(int argc, char** argv) {
+  return masnet::cli::main(argc, argv);
+}
