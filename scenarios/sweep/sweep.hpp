@@ -1,7 +1,7 @@
 #pragma once
 // Parameter sweeps (docs/sweeps.md): a sweep file names a base scenario, what to vary
 // and which seeds; it expands into runs, each fully determined by (base, overrides, seed) and
-// named by a stable id. Runs execute on worker threads (and MPI ranks, sweep_command.cpp);
+// named by a stable id. Runs execute on worker threads (and MPI ranks, cli/sweep_command.cpp);
 // only the calling thread writes results.sqlite, results.csv and report.html.
 #include <algorithm>
 #include <chrono>
