@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Checks that keep the docs true to the tree: docs/architecture.md names every header of the
-# five libraries, and nothing cites a document outside the repository (the repository speaks
-# only of itself: docs/ pages and the paper by its title). Run by CTest from the source root.
+# libraries (scenarios/ and all its folders), and nothing cites a document outside the
+# repository (the repository speaks only of itself: docs/ pages and the paper by its title).
+# Run by CTest from the source root.
 set -u
 cd "$(dirname "$0")/.."
 status=0
-for header in sim/*.hpp net/*.hpp protocols/*.hpp agents/*.hpp scenarios/*.hpp; do
+for header in sim/*.hpp net/*.hpp protocols/*.hpp agents/*.hpp $(find scenarios -name '*.hpp' | sort); do
   if ! grep -q "$(basename "$header")" docs/architecture.md; then
     echo "docs/architecture.md does not name $header"
     status=1

@@ -11,7 +11,7 @@
 #include <string_view>
 
 #include "fuzz_input.hpp"
-#include "scenarios/scenario.hpp"
+#include "scenarios/loader/scenario.hpp"
 
 // The checks that need the loader's capped and escaped messages; OFF keeps the others only.
 #ifndef MASNET_FUZZ_STRICT_MESSAGES

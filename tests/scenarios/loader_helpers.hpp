@@ -10,7 +10,7 @@
 #include <system_error>
 #include <vector>
 
-#include "scenarios/reader.hpp"
+#include "scenarios/loader/reader.hpp"
 
 namespace masnet::test {
 

@@ -1,0 +1,39 @@
+#pragma once
+// Shared by the figure files only (figures.cpp draws the maps, figure_curves.cpp the curves
+// over time): colours, small readers of the run's data, and the curve figures.
+#include <cstddef>
+#include <limits>
+#include <map>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "scenarios/report/plot/plot.hpp"
+#include "scenarios/report/run_data.hpp"
+
+namespace masnet::scenarios::figure_parts {
+
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+inline constexpr plot::Rgb kBlack{0, 0, 0};
+inline constexpr plot::Rgb kGrey{0.45, 0.45, 0.45};
+
+/// A point written as [x, y].
+plot::Point point(const nlohmann::json& j);
+/// A list of such points (none when `j` is not an array).
+std::vector<plot::Point> points(const nlohmann::json& j);
+/// The column `name`, or no values when the table lacks it.
+const std::vector<double>& column_or_empty(const Table& t, std::string_view name);
+/// Rows of trajectories.csv grouped by robot.
+std::map<std::size_t, std::vector<std::size_t>> rows_by_robot(const Table& t);
+
+// The curves over time (figure_curves.cpp).
+void draw_coverage(cairo_t* cr, const RunData& run);
+void draw_tracking(cairo_t* cr, const RunData& run);
+void draw_pollution(cairo_t* cr, const RunData& run);
+void draw_radius(cairo_t* cr, const RunData& run);
+void draw_messages(cairo_t* cr, const RunData& run);
+void draw_energy(cairo_t* cr, const RunData& run);
+void draw_correctness(cairo_t* cr, const RunData& run);
+
+}  // namespace masnet::scenarios::figure_parts

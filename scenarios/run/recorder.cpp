@@ -1,0 +1,561 @@
+#include "scenarios/run/recorder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iterator>
+#include <limits>
+
+#include <fmt/compile.h>
+#include <fmt/format.h>
+
+#include "protocols/heard_cell.hpp"
+#include "scenarios/output/output_file.hpp"
+
+namespace masnet::scenarios {
+namespace {
+
+constexpr std::size_t kWriteChunkBytes = std::size_t{1} << 16;  // buffered rows per write
+
+nlohmann::json point(const Vec2& p) {
+  return nlohmann::json::array({p.x(), p.y()});
+}
+
+}  // namespace
+
+Recorder::Recorder(agents::World& world, const ScenarioDef& def) : world_(world), def_(def) {}
+
+void Recorder::assign_sensors(const std::vector<Vec2>& robots,
+                              std::vector<std::uint32_t>& nearest) const {
+  const std::size_t n_sensors = world_.sensor_count();
+  nearest.assign(n_sensors, 0);
+  if (robots.empty()) return;
+  if (robots.size() <= kScanRobots) {
+    // A few robots: test them all (the grid's arithmetic, ties to the lower index).
+    for (std::size_t s = 0; s < n_sensors; ++s) {
+      const Vec2 p = world_.def().sensors[s].position;
+      double best_d2 = std::numeric_limits<double>::infinity();
+      std::uint32_t best = 0;
+      for (std::uint32_t i = 0; i < robots.size(); ++i) {
+        const double ddx = robots[i].x() - p.x(), ddy = robots[i].y() - p.y();
+        const double d2 = ddx * ddx + ddy * ddy;
+        if (d2 < best_d2) {
+          best_d2 = d2;
+          best = i;
+        }
+      }
+      nearest[s] = best;
+    }
+    return;
+  }
+  std::vector<sim::NodeId> ids;
+  for (std::uint32_t i = 0; i < robots.size(); ++i)
+    ids.push_back(sim::node_id(i));
+  net::SpatialGrid grid;
+  grid.build(robots, ids);
+  const double start_radius = std::max(grid.cell_size(), 1e-9);
+  for (std::size_t s = 0; s < n_sensors; ++s) {
+    const Vec2 p = world_.def().sensors[s].position;
+    for (double r = start_radius;; r *= 2.0) {
+      double best_d2 = std::numeric_limits<double>::infinity();
+      std::uint32_t best = 0;
+      bool found = false;
+      grid.for_each_within(p, r, [&](sim::NodeId id, const Vec2&, double d2) {
+        const std::uint32_t i = sim::index(id);
+        if (d2 < best_d2 || (d2 == best_d2 && i < best)) {
+          best_d2 = d2;
+          best = i;
+          found = true;
+        }
+      });
+      if (found) {
+        nearest[s] = best;
+        break;
+      }
+    }
+  }
+}
+
+void Recorder::sample() {
+  Sample row;
+  row.t_s = sim::to_seconds(world_.simulator().now());
+  const std::size_t n_robots = world_.robot_count(), n_sensors = world_.sensor_count();
+  std::vector<Vec2> robots(n_robots);
+  for (std::size_t i = 0; i < n_robots; ++i)
+    robots[i] = world_.robot_state(i).position;
+
+  // Coverage cost and true centroids over the sensor-sampled density SK(ρ)·A.
+  std::vector<std::uint32_t> nearest;
+  assign_sensors(robots, nearest);
+  std::vector<double> mass(n_robots, 0.0), mx(n_robots, 0.0), my(n_robots, 0.0);
+  for (std::size_t s = 0; s < n_sensors && n_robots > 0; ++s) {
+    const auto& sensor = world_.def().sensors[s];
+    const double w = world_.def().scaling(world_.true_density(s)) * sensor.area;
+    const std::uint32_t i = nearest[s];
+    row.coverage_cost += w * (sensor.position - robots[i]).squaredNorm();
+    mass[i] += w;
+    mx[i] += w * sensor.position.x();
+    my[i] += w * sensor.position.y();
+  }
+  std::size_t with_mass = 0;
+  for (std::size_t i = 0; i < n_robots; ++i) {
+    row.mean_radius += world_.robot_protocol(i).radius();
+    if (mass[i] <= 0.0) continue;
+    const double d = (Vec2{mx[i] / mass[i], my[i] / mass[i]} - robots[i]).norm();
+    row.mean_dist_to_centroid += d;
+    row.max_dist_to_centroid = std::max(row.max_dist_to_centroid, d);
+    ++with_mass;
+  }
+  if (with_mass) row.mean_dist_to_centroid /= static_cast<double>(with_mass);
+  if (n_robots) row.mean_radius /= static_cast<double>(n_robots);
+
+  net::Radio& radio = world_.radio();
+  for (std::size_t t = 0; t < net::message_type_count(); ++t) {
+    row.messages += radio.totals(static_cast<net::MessageType>(t)).tx_count;
+    row.bytes += radio.totals(static_cast<net::MessageType>(t)).tx_bytes;
+  }
+  row.energy_j = radio.total_tx_energy_j() + radio.total_rx_energy_j();
+  if (radio.params().energy.idle_power_w > 0)
+    for (std::size_t n = 0; n < radio.node_count(); ++n)
+      row.energy_j += radio.stats(sim::node_id(static_cast<std::uint32_t>(n))).energy_idle_j;
+
+  // Tracking: each target's nearest robot, and each robot's nearest target (its group).
+  if (world_.def().field.kind == agents::FieldKind::acoustic && n_robots > 0) {
+    const std::vector<Vec2> targets = world_.source_positions();
+    row.robots_per_target.assign(targets.size(), 0);
+    for (const Vec2& target : targets) {
+      double best = std::numeric_limits<double>::infinity();
+      for (const Vec2& p : robots)
+        best = std::min(best, (p - target).norm());
+      row.tracking_mean += best / static_cast<double>(targets.size());
+      row.tracking_max = std::max(row.tracking_max, best);
+    }
+    std::vector<int> group(n_robots, 0);
+    for (std::size_t i = 0; i < n_robots; ++i) {
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < targets.size(); ++k) {
+        const double d = (robots[i] - targets[k]).norm();
+        if (d < best) {
+          best = d;
+          group[i] = static_cast<int>(k);
+        }
+      }
+      ++row.robots_per_target[static_cast<std::size_t>(group[i])];
+    }
+    if (!last_group_.empty())
+      for (std::size_t i = 0; i < n_robots; ++i)
+        group_changes_ += group[i] != last_group_[i] ? 1 : 0;
+    last_group_ = group;
+  }
+  if (const agents::DiffusionField* field = world_.diffusion()) {
+    row.pollution_total = world_.pollution_total();
+    row.pollution_integral = field->mass();
+    row.pollution_max = field->peak();
+    for (std::size_t i = 0; i < n_robots; ++i)
+      row.neutraliser_used += world_.neutraliser_used(i);
+  }
+  row.updates = updates_.size();
+  row.cell_correctness = updates_.empty() ? 1.0
+                                          : static_cast<double>(correct_updates_) /
+                                                static_cast<double>(updates_.size());
+  row.cell_correctness_heard = updates_.empty() ? 1.0
+                                                : static_cast<double>(correct_heard_updates_) /
+                                                      static_cast<double>(updates_.size());
+  samples_.push_back(std::move(row));
+}
+
+void Recorder::attach_baseline(const std::vector<Sample>& baseline) {
+  for (std::size_t k = 0; k < samples_.size() && k < baseline.size(); ++k) {
+    samples_[k].pollution_total_baseline = baseline[k].pollution_total;
+    samples_[k].pollution_integral_baseline = baseline[k].pollution_integral;
+  }
+  has_baseline_ = true;
+}
+
+void Recorder::sample_trajectories() {
+  const double t = sim::to_seconds(world_.simulator().now());
+  for (std::size_t i = 0; i < world_.robot_count(); ++i) {
+    const agents::MotionState s = world_.robot_state(i);
+    trajectories_.push_back({t, static_cast<std::uint32_t>(i), s.position, s.velocity,
+                             world_.robot_protocol(i).radius(), world_.robot_target(i)});
+  }
+}
+
+void Recorder::snapshot() {
+  nlohmann::json snap;
+  snap["t"] = sim::to_seconds(world_.simulator().now());
+  nlohmann::json robots = nlohmann::json::array();
+  for (std::size_t i = 0; i < world_.robot_count(); ++i) {
+    nlohmann::json r;
+    r["position"] = point(world_.robot_state(i).position);
+    r["target"] = point(world_.robot_target(i));
+    r["radius"] = world_.robot_protocol(i).radius();
+    nlohmann::json cell = nlohmann::json::array();
+    for (const Vec2& v : world_.robot_protocol(i).cell().vertices)
+      cell.push_back(point(v));
+    r["cell"] = cell;
+    nlohmann::json oracle = nlohmann::json::array();
+    for (const Vec2& v : world_.oracle_cell(i).polygon.vertices)
+      oracle.push_back(point(v));
+    r["oracle_cell"] = oracle;
+    robots.push_back(r);
+  }
+  snap["robots"] = robots;
+  nlohmann::json readings = nlohmann::json::array();
+  for (std::size_t s = 0; s < world_.sensor_count(); ++s)
+    readings.push_back(world_.true_density(s));
+  snap["readings"] = readings;
+  nlohmann::json sources = nlohmann::json::array();
+  const double t = snap["t"];
+  for (const agents::PathDef& p : world_.def().field.targets)
+    sources.push_back({{"position", point(agents::position_on(p, t))},
+                       {"heading", point(agents::heading_on(p, t))}});
+  for (const agents::GaussianBump& b : world_.def().field.bumps)
+    sources.push_back({{"position", point(agents::position_on(b.path, t))},
+                       {"heading", point(agents::heading_on(b.path, t))}});
+  for (const agents::SourceDef& src : world_.def().field.sources)
+    sources.push_back({{"position", point(agents::position_on(src.path, t))},
+                       {"heading", point(agents::heading_on(src.path, t))}});
+  snap["sources"] = sources;
+  if (const agents::DiffusionField* field = world_.diffusion()) {
+    const auto& p = field->params();
+    const auto values = field->values();
+    snap["field"] = {{"nx", field->nx()},
+                     {"ny", field->ny()},
+                     {"x0", p.x0},
+                     {"y0", p.y0},
+                     {"x1", p.x1},
+                     {"y1", p.y1},
+                     {"values", std::vector<double>(values.begin(), values.end())}};
+  }
+  snapshots_.push_back(std::move(snap));
+}
+
+void Recorder::on_update(std::size_t robot, const protocols::UpdateRecord& record) {
+  UpdateRow row{record, true, true};
+  // Cell correctness: the neighbour set the robot computed against the true one now, and
+  // against the one of the positions it heard (docs/decisions/0010-cell-correctness.md).
+  if (!world_.protocol_uses_ground_truth()) {  // the oracle's cells are true by definition
+    // The robot's own cell is a good guess of the true one's reach (Cortés' rule needs twice the
+    // farthest vertex; a quarter more spares most doublings).
+    const double guess =
+        2.5 * protocols::max_vertex_distance(record.cell, world_.robot_state(robot).position);
+    row.correct = world_.oracle_cell(robot, guess).neighbours == record.neighbours;
+    row.correct_heard = protocols::heard_neighbours(record.position, record.heard,
+                                                    world_.def().domain) == record.neighbours;
+  }
+  correct_updates_ += row.correct ? 1 : 0;
+  correct_heard_updates_ += row.correct_heard ? 1 : 0;
+  if (!def_.output.updates) row.record.cell.vertices.clear();  // keep memory small
+  updates_.push_back(std::move(row));
+}
+
+void Recorder::on_battery_empty(sim::NodeId node) {
+  deaths_.emplace_back(node, sim::to_seconds(world_.simulator().now()));
+}
+
+void Recorder::write_timeseries(const std::string& path) const {
+  OutputFile out(path);
+  const std::size_t targets =
+      def_.world.field.kind == agents::FieldKind::acoustic ? def_.world.field.targets.size() : 0;
+  out.print(
+      "t_s,coverage_cost,mean_dist_to_centroid,max_dist_to_centroid,mean_radius,messages,bytes,"
+      "energy_j,"
+      "updates,cell_correctness,cell_correctness_heard");
+  if (targets) out.print(",tracking_error_mean,tracking_error_max");
+  for (std::size_t k = 0; k < targets; ++k)
+    out.print(",robots_target_{}", k);
+  const bool pollution = world_.diffusion() != nullptr;
+  if (pollution) out.print(",pollution_total,pollution_integral,pollution_max,neutraliser_used");
+  if (pollution && has_baseline_)
+    out.print(",pollution_total_baseline,pollution_integral_baseline");
+  out.print("\n");
+  for (const Sample& s : samples_) {
+    out.print("{},{},{},{},{},{},{},{},{},{},{}", s.t_s, s.coverage_cost, s.mean_dist_to_centroid,
+              s.max_dist_to_centroid, s.mean_radius, s.messages, s.bytes, s.energy_j, s.updates,
+              s.cell_correctness, s.cell_correctness_heard);
+    if (targets) out.print(",{},{}", s.tracking_mean, s.tracking_max);
+    for (std::size_t k = 0; k < targets; ++k)
+      out.print(",{}", k < s.robots_per_target.size() ? s.robots_per_target[k] : 0);
+    if (pollution)
+      out.print(",{},{},{},{}", s.pollution_total, s.pollution_integral, s.pollution_max,
+                s.neutraliser_used);
+    if (pollution && has_baseline_)
+      out.print(",{},{}", s.pollution_total_baseline, s.pollution_integral_baseline);
+    out.print("\n");
+  }
+  out.close();
+}
+
+void Recorder::write_trajectories(const std::string& path) const {
+  OutputFile out(path);
+  out.print("t_s,robot,x,y,vx,vy,radius,cx,cy\n");
+  for (const TrajectoryRow& r : trajectories_)
+    out.print("{},{},{},{},{},{},{},{},{}\n", r.t_s, r.robot, r.position.x(), r.position.y(),
+              r.velocity.x(), r.velocity.y(), r.radius, r.target.x(), r.target.y());
+  out.close();
+}
+
+void Recorder::write_updates(const std::string& path) const {
+  OutputFile out(path);
+  out.print(
+      "robot,update,t_start_s,t_end_s,latency_s,rounds,radius,truncated,delayed,no_mass,readings,"
+      "neighbours,correct,correct_heard,cx,cy");
+  const std::size_t types = net::message_type_count();
+  for (std::size_t t = 0; t < types; ++t)
+    out.print(",{0}_count,{0}_bytes", net::name_of(t));
+  // The protocol's own per-update fields (docs/protocol-api.md).
+  const std::vector<std::string>& extra = world_.protocol_definition().update_columns;
+  for (const std::string& column : extra)
+    out.print(",{}", column);
+  out.print("\n");
+  for (const UpdateRow& u : updates_) {
+    const auto& r = u.record;
+    out.print("{},{},{},{},{},{},{},{:d},{:d},{:d},{},{},{:d},{:d},{},{}", sim::index(r.robot),
+              r.update, sim::to_seconds(r.started), sim::to_seconds(r.finished),
+              sim::to_seconds(r.finished - r.started), r.rounds, r.radius, r.truncated, r.delayed,
+              r.no_mass, r.readings, r.neighbours.size(), u.correct, u.correct_heard,
+              r.centroid.x(), r.centroid.y());
+    for (std::size_t t = 0; t < types; ++t)
+      out.print(",{},{}", r.messages[t].count, r.messages[t].bytes);
+    for (std::size_t k = 0; k < extra.size(); ++k) {
+      if (k < r.extra.size())
+        out.print(",{}", r.extra[k]);
+      else
+        out.print(",");
+    }
+    out.print("\n");
+  }
+  out.close();
+}
+
+void Recorder::write_nodes(const std::string& path) const {
+  OutputFile out(path);
+  out.print(
+      "node,role,index,x,y,alive,died_at_s,energy_j,energy_tx_j,energy_rx_j,energy_idle_j,tx_count,"
+      "tx_bytes,"
+      "rx_count,rx_bytes,overheard_count,heard_bytes,lost_count,unreachable_count,refused_count");
+  const std::size_t types = net::message_type_count();
+  for (std::size_t t = 0; t < types; ++t)
+    out.print(",tx_{0},rx_{0}", net::name_of(t));
+  out.print("\n");
+  net::Radio& radio = world_.radio();
+  // Rows are formatted with compiled formats into a buffer written in large pieces: a million
+  // sensors make a 160 MB file, and a runtime format string parsed 20 times a row was most of
+  // the time of writing it.
+  fmt::memory_buffer rows;
+  auto it = std::back_inserter(rows);
+  for (std::uint32_t n = 0; n < radio.node_count(); ++n) {
+    const sim::NodeId id = sim::node_id(n);
+    const bool robot = world_.is_robot(id);
+    const std::size_t index = robot ? n : n - world_.robot_count();
+    const Vec2 p = world_.position(id);
+    const net::NodeRadioStats& s = radio.stats(id);
+    std::uint64_t tx = 0, txb = 0, rx = 0, rxb = 0;
+    for (std::size_t t = 0; t < types; ++t) {
+      const auto& c = radio.counters(id, static_cast<net::MessageType>(t));
+      tx += c.tx_count;
+      txb += c.tx_bytes;
+      rx += c.rx_count;
+      rxb += c.rx_bytes;
+    }
+    fmt::format_to(it, FMT_COMPILE("{},{},{},{},{},{},"), n, robot ? "robot" : "sensor", index,
+                   p.x(), p.y(), s.alive ? 1 : 0);
+    if (!s.alive) fmt::format_to(it, FMT_COMPILE("{}"), sim::to_seconds(s.died_at));
+    fmt::format_to(it, FMT_COMPILE(",{},{},{},{},{},{},{},{},{},{},{},{},{}"),
+                   s.energy_tx_j + s.energy_rx_j + s.energy_idle_j, s.energy_tx_j, s.energy_rx_j,
+                   s.energy_idle_j, tx, txb, rx, rxb, s.overheard_count, s.heard_bytes,
+                   s.lost_count, s.unreachable_count, s.refused_count);
+    for (std::size_t t = 0; t < types; ++t) {
+      const auto& c = radio.counters(id, static_cast<net::MessageType>(t));
+      fmt::format_to(it, FMT_COMPILE(",{},{}"), c.tx_count, c.rx_count);
+    }
+    rows.push_back('\n');
+    if (rows.size() >= kWriteChunkBytes) {
+      out.write(std::string_view(rows.data(), rows.size()));
+      rows.clear();
+    }
+  }
+  out.write(std::string_view(rows.data(), rows.size()));
+  out.close();
+}
+
+void Recorder::write_snapshots(const std::string& path) const {
+  write_file(path, snapshots_.dump() + "\n");
+}
+
+namespace {
+
+// Peak, final, final/peak, whether the curve never rises after its peak, and the first time it
+// falls below `threshold` after the peak (null if never).
+nlohmann::json curve_summary(const std::vector<Sample>& samples, double Sample::*value,
+                             double threshold_or_zero) {
+  std::size_t peak_at = 0;
+  for (std::size_t k = 0; k < samples.size(); ++k)
+    if (samples[k].*value > samples[peak_at].*value) peak_at = k;
+  const double peak = samples[peak_at].*value, final = samples.back().*value;
+  bool monotonic = true;
+  for (std::size_t k = peak_at + 1; k < samples.size(); ++k)
+    if (samples[k].*value > samples[k - 1].*value) monotonic = false;
+  const double threshold = threshold_or_zero > 0 ? threshold_or_zero : 0.05 * peak;
+  nlohmann::json clean = nullptr;
+  for (std::size_t k = peak_at; k < samples.size(); ++k)
+    if (samples[k].*value < threshold) {
+      clean = samples[k].t_s;
+      break;
+    }
+  return {{"peak", peak},
+          {"peak_time_s", samples[peak_at].t_s},
+          {"final", final},
+          {"final_over_peak", peak > 0 ? final / peak : 0.0},
+          {"monotonic_after_peak", monotonic},
+          {"clean_threshold", threshold},
+          {"time_to_clean_s", clean}};
+}
+
+}  // namespace
+
+nlohmann::json Recorder::pollution_summary() const {
+  nlohmann::json p = curve_summary(samples_, &Sample::pollution_total, def_.clean_threshold);
+  const auto& d = def_.world.field.diffusion;
+  p["mode"] = d.mode == agents::DiffusionMode::fidelity ? "fidelity" : "physical";
+  p["boundary"] = d.boundary == agents::Boundary::dirichlet ? "dirichlet" : "no_flux";
+  p["control"] = def_.world.dispenser.enabled;
+  p["integral_final"] = samples_.back().pollution_integral;
+  p["neutraliser_used"] = samples_.back().neutraliser_used;
+  std::vector<double> per_robot;
+  for (std::size_t i = 0; i < world_.robot_count(); ++i)
+    per_robot.push_back(world_.neutraliser_used(i));
+  p["neutraliser_per_robot"] = per_robot;
+  if (has_baseline_) {
+    nlohmann::json b =
+        curve_summary(samples_, &Sample::pollution_total_baseline, def_.clean_threshold);
+    b["integral_final"] = samples_.back().pollution_integral_baseline;
+    p["baseline"] = b;
+    const double base_final = samples_.back().pollution_total_baseline;
+    p["final_over_baseline_final"] =
+        base_final != 0 ? samples_.back().pollution_total / base_final : 0.0;
+  }
+  return p;
+}
+
+nlohmann::json Recorder::summary_metrics() const {
+  nlohmann::json j;
+  net::Radio& radio = world_.radio();
+  // Messages: transmissions, by type.
+  std::uint64_t count = 0, bytes = 0;
+  nlohmann::json by_type = nlohmann::json::object();
+  for (std::size_t t = 0; t < net::message_type_count(); ++t) {
+    const auto& c = radio.totals(static_cast<net::MessageType>(t));
+    count += c.tx_count;
+    bytes += c.tx_bytes;
+    by_type[std::string(net::name_of(t))] = {{"count", c.tx_count},
+                                             {"bytes", c.tx_bytes},
+                                             {"rx_count", c.rx_count},
+                                             {"rx_bytes", c.rx_bytes}};
+  }
+  j["messages"] = {{"total", {{"count", count}, {"bytes", bytes}}}, {"by_type", by_type}};
+
+  // Energy: per node, then totals.
+  double tx = 0, rx = 0, idle = 0, max_node = 0, robots_total = 0, sensors_total = 0,
+         max_sensor = 0;
+  std::uint64_t dead = 0;
+  for (std::uint32_t n = 0; n < radio.node_count(); ++n) {
+    const sim::NodeId id = sim::node_id(n);
+    const net::NodeRadioStats& s = radio.stats(id);
+    const double e = s.energy_tx_j + s.energy_rx_j + s.energy_idle_j;
+    tx += s.energy_tx_j;
+    rx += s.energy_rx_j;
+    idle += s.energy_idle_j;
+    max_node = std::max(max_node, e);
+    dead += s.alive ? 0 : 1;
+    if (world_.is_robot(id)) {
+      robots_total += e;
+    } else {
+      sensors_total += e;
+      max_sensor = std::max(max_sensor, e);
+    }
+  }
+  const double nodes = std::max<double>(1.0, static_cast<double>(radio.node_count()));
+  j["energy_j"] = {{"total", tx + rx + idle},
+                   {"radio_tx", tx},
+                   {"radio_rx", rx},
+                   {"idle", idle},
+                   {"per_node_max", max_node},
+                   {"per_node_mean", (tx + rx + idle) / nodes},
+                   {"robots_total", robots_total},
+                   {"sensors_total", sensors_total},
+                   {"per_sensor_max", max_sensor},
+                   {"nodes_dead", dead}};
+
+  // Protocol statistics over all updates.
+  nlohmann::json p;
+  p["name"] = def_.world.protocol.kind;
+  const double n_updates = static_cast<double>(updates_.size());
+  double rounds = 0, latency = 0, latency_max = 0, radius = 0;
+  std::uint32_t rounds_max = 0;
+  std::uint64_t truncated = 0, delayed = 0, no_mass = 0;
+  const std::size_t types = net::message_type_count();
+  std::vector<double> per_type(types, 0.0);
+  double update_bytes = 0;
+  for (const UpdateRow& u : updates_) {
+    const auto& r = u.record;
+    rounds += r.rounds;
+    rounds_max = std::max(rounds_max, r.rounds);
+    const double l = sim::to_seconds(r.finished - r.started);
+    latency += l;
+    latency_max = std::max(latency_max, l);
+    radius += r.radius;
+    truncated += r.truncated ? 1 : 0;
+    delayed += r.delayed ? 1 : 0;
+    no_mass += r.no_mass ? 1 : 0;
+    for (std::size_t t = 0; t < types; ++t) {
+      per_type[t] += static_cast<double>(r.messages[t].count);
+      update_bytes += static_cast<double>(r.messages[t].bytes);
+    }
+  }
+  const double div = std::max(1.0, n_updates);
+  p["updates"] = updates_.size();
+  p["rounds_mean"] = rounds / div;
+  p["rounds_max"] = rounds_max;
+  p["truncated"] = truncated;
+  p["cell_correctness"] =
+      updates_.empty() ? 1.0 : static_cast<double>(correct_updates_) / n_updates;
+  p["cell_correctness_heard"] =
+      updates_.empty() ? 1.0 : static_cast<double>(correct_heard_updates_) / n_updates;
+  p["delayed_updates"] = delayed;
+  p["no_mass_updates"] = no_mass;
+  p["latency_mean_s"] = latency / div;
+  p["latency_max_s"] = latency_max;
+  p["radius_mean"] = radius / div;
+  nlohmann::json per_update = nlohmann::json::object();
+  for (std::size_t t = 0; t < types; ++t)
+    if (per_type[t] > 0) per_update[std::string(net::name_of(t))] = per_type[t] / div;
+  p["messages_per_update"] = per_update;
+  p["bytes_per_update"] = update_bytes / div;
+  j["protocol"] = p;
+
+  if (world_.diffusion() && !samples_.empty()) j["pollution"] = pollution_summary();
+  if (!samples_.empty()) {
+    const Sample& last = samples_.back();
+    j["coverage"] = {{"final_cost", last.coverage_cost},
+                     {"max_dist_to_centroid", last.max_dist_to_centroid},
+                     {"mean_dist_to_centroid", last.mean_dist_to_centroid}};
+    if (def_.world.field.kind == agents::FieldKind::acoustic) {
+      double mean = 0, max_after_1s = 0;
+      for (const Sample& s : samples_) {
+        mean += s.tracking_mean;
+        if (s.t_s >= 1.0) max_after_1s = std::max(max_after_1s, s.tracking_max);
+      }
+      j["tracking"] = {{"mean_error", mean / static_cast<double>(samples_.size())},
+                       {"max_error_after_1s", max_after_1s},
+                       {"robots_per_target", last.robots_per_target},
+                       {"group_changes", group_changes_},
+                       {"clamped_readings", world_.clamped_readings()},
+                       {"sensor_readings", world_.sensor_readings()}};
+    }
+  }
+  return j;
+}
+
+}  // namespace masnet::scenarios

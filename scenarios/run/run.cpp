@@ -1,0 +1,147 @@
+#include "scenarios/run/run.hpp"
+
+#include <chrono>
+#include <filesystem>
+
+#include "scenarios/output/output_file.hpp"
+#include "scenarios/run/run_warnings.hpp"
+#include "sim/fingerprint.hpp"
+#include "sim/log.hpp"
+
+namespace masnet::scenarios {
+namespace fs = std::filesystem;
+
+Run::Run(ScenarioDef def)
+    : def_(std::move(def)),
+      simulator_(std::make_unique<sim::Simulator>()),
+      world_(std::make_unique<agents::World>(*simulator_, def_.world)),
+      recorder_(std::make_unique<Recorder>(*world_, def_)) {
+  world_->set_observer(recorder_.get());
+}
+
+Run::~Run() = default;
+
+std::uint64_t Run::events() const {
+  return simulator_->events_run();
+}
+std::string Run::fingerprint() const {
+  return simulator_->fingerprint().hex();
+}
+std::string Run::traffic_fingerprint() const {
+  return traffic_fingerprint_;
+}
+
+namespace {
+// Events between two progress calls while a chunk runs: a few microseconds of wall time each,
+// so the bar hears from the run many times a second at a negligible cost per event.
+constexpr std::uint64_t kProgressEveryEvents = 4096;
+}  // namespace
+
+void Run::execute(const ProgressFn& progress) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  world_->start();
+  // Checkpoints on integer grids of each period (no accumulated rounding): the recorder
+  // observes between run_until chunks, never as an event.
+  const sim::Time end = sim::time_at(def_.duration_s);
+  const sim::Duration sample = sim::seconds(def_.output.sample_period_s);
+  const sim::Duration trajectory = sim::seconds(def_.output.trajectory_period_s);
+  std::vector<sim::Time> snapshots;
+  for (double t : def_.output.snapshots)
+    snapshots.push_back(sim::time_at(t));
+  std::sort(snapshots.begin(), snapshots.end());
+  std::int64_t next_sample = 0, next_trajectory = 0;
+  std::size_t next_snapshot = 0;
+  // Between checkpoints too (a large run may spend seconds of wall time in one chunk): the
+  // kernel calls back every few thousand events, and the callee decides from the wall clock
+  // whether to draw.
+  if (progress)
+    simulator_->set_progress_hook(kProgressEveryEvents,
+                                  [&progress](sim::Time now, std::uint64_t events) {
+                                    progress(sim::to_seconds(now), events);
+                                  });
+  for (;;) {
+    const sim::Time t_sample = sim::kTimeZero + next_sample * sample;
+    const sim::Time t_trajectory = sim::kTimeZero + next_trajectory * trajectory;
+    sim::Time next = std::min({t_sample, t_trajectory, end});
+    if (next_snapshot < snapshots.size()) next = std::min(next, snapshots[next_snapshot]);
+    simulator_->run_until(next);
+    if (t_sample == next) {
+      recorder_->sample();
+      ++next_sample;
+    }
+    if (t_trajectory == next) {
+      recorder_->sample_trajectories();
+      ++next_trajectory;
+    }
+    while (next_snapshot < snapshots.size() && snapshots[next_snapshot] == next) {
+      recorder_->snapshot();
+      ++next_snapshot;
+    }
+    if (progress) progress(sim::to_seconds(next), simulator_->events_run());
+    if (next == end) break;
+  }
+  simulator_->set_progress_hook(0, nullptr);
+  // The final state is always sampled, whatever the period.
+  if (recorder_->samples().empty() || recorder_->samples().back().t_s != def_.duration_s)
+    recorder_->sample();
+  traffic_fingerprint_ =
+      world_->radio().traffic_fingerprint().hex();  // a pass over every node: once
+  if (def_.baseline && def_.world.dispenser.enabled) {
+    // The uncontrolled twin: same scenario and seed, dispensers off, so that with/without
+    // control always sit side by side (docs/field-models.md).
+    ScenarioDef twin = def_;
+    twin.world.dispenser.enabled = false;
+    twin.baseline = false;
+    twin.output.snapshots.clear();
+    Run baseline(twin);
+    sim::Log(*simulator_)
+        .info("the baseline twin (no dispensers) runs now; its clock starts again at 0");
+    baseline.execute();
+    recorder_->attach_baseline(baseline.recorder().samples());
+    baseline_fingerprint_ = baseline.fingerprint();
+  }
+  wall_time_s_ =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+}
+
+nlohmann::json Run::summary() const {
+  nlohmann::json j;
+  j["masnet_version"] = MASNET_VERSION;
+  j["seed"] = def_.seed;
+  j["sim_time_s"] = def_.duration_s;
+  j["wall_time_s"] = wall_time_s_;
+  j["events"] = simulator_->events_run();
+  j["fingerprint"] = simulator_->fingerprint().hex();
+  j["traffic_fingerprint"] = traffic_fingerprint();
+  j["run_key"] = run_key(def_);
+  if (!baseline_fingerprint_.empty()) j["baseline_fingerprint"] = baseline_fingerprint_;
+  j["scenario"] = {{"name", def_.name},
+                   {"source", def_.source_path},
+                   {"sensors", world_->sensor_count()},
+                   {"robots", world_->robot_count()},
+                   {"sensor_layout", def_.sensor_layout},
+                   {"resolved", def_.resolved}};
+  j.update(recorder_->summary_metrics());
+  j["warnings"] = run_warnings(j, def_.world.radio.loss);
+  return j;
+}
+
+void Run::write_files(const std::string& dir) const {
+  const fs::path d(dir);
+  write_file(d / "summary.json", summary().dump(2) + "\n");
+  recorder_->write_nodes((d / "nodes.csv").string());
+  recorder_->write_timeseries((d / "timeseries.csv").string());
+  recorder_->write_trajectories((d / "trajectories.csv").string());
+  if (def_.output.updates) recorder_->write_updates((d / "updates.csv").string());
+  recorder_->write_snapshots((d / "snapshots.json").string());
+}
+
+std::string run_key(const ScenarioDef& def) {
+  sim::Fingerprint h;
+  const std::string text = std::string(MASNET_VERSION) + "\n" + def.resolved.dump();
+  for (unsigned char c : text)
+    h.mix(std::uint64_t{c});
+  return h.hex();
+}
+
+}  // namespace masnet::scenarios

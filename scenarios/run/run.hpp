@@ -1,0 +1,55 @@
+#pragma once
+// One run of a scenario: the simulator, the world and the recorder together, advanced in
+// chunks between sample times, and the run directory it writes (docs/outputs.md).
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "scenarios/loader/scenario.hpp"
+#include "scenarios/run/recorder.hpp"
+
+namespace masnet::scenarios {
+
+/// Called now and then during a run with (simulated seconds done, events so far).
+using ProgressFn = std::function<void(double t_s, std::uint64_t events)>;
+
+class Run {
+ public:
+  explicit Run(ScenarioDef def);
+  ~Run();
+
+  /// Simulates the whole duration.
+  void execute(const ProgressFn& progress = {});
+
+  /// summary.json: the keys of docs/outputs.md.
+  nlohmann::json summary() const;
+  /// Writes summary.json, nodes.csv, timeseries.csv, trajectories.csv, updates.csv and
+  /// snapshots.json into the existing directory `dir`.
+  void write_files(const std::string& dir) const;
+
+  const Recorder& recorder() const { return *recorder_; }
+  std::uint64_t events() const;
+  std::string fingerprint() const;
+  /// The radio's outcomes (net::Radio::traffic_fingerprint) at the end of the run: with
+  /// `fingerprint`, "same run".
+  std::string traffic_fingerprint() const;
+  double wall_time_s() const { return wall_time_s_; }
+
+ private:
+  ScenarioDef def_;  // a copy: the world and recorder refer to it for the whole run
+  std::unique_ptr<sim::Simulator> simulator_;
+  std::unique_ptr<agents::World> world_;
+  std::unique_ptr<Recorder> recorder_;
+  double wall_time_s_ = 0.0;
+  std::string baseline_fingerprint_;
+  std::string traffic_fingerprint_;
+};
+
+/// A key that names the run: the same resolved scenario (seed included) and version give
+/// the same key. A run directory holding another key is "a different run".
+std::string run_key(const ScenarioDef& def);
+
+}  // namespace masnet::scenarios
