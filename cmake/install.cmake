@@ -4,10 +4,11 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-# One target a program links to get everything, masnet::masnet, in the build tree and installed.
+# One target a program links to get everything, masnet::masnet, in the build tree and installed:
+# the protocol API (with its include paths, C++20, Eigen and spdlog) and the command line.
 add_library(masnet_all INTERFACE)
 add_library(masnet::masnet ALIAS masnet_all)
-target_link_libraries(masnet_all INTERFACE ${MASNET_CLI_LIBRARY})
+target_link_libraries(masnet_all INTERFACE masnet_protocols ${MASNET_CLI_LIBRARY})
 set_target_properties(masnet_all PROPERTIES EXPORT_NAME masnet)
 
 foreach(target IN LISTS MASNET_INSTALLED_LIBRARIES)

@@ -1,6 +1,6 @@
 // The `masnet` command line (docs/scenario-reference.md, docs/outputs.md, docs/sweeps.md): one
 // subcommand per file (run_command.cpp, validate_command.cpp, render_command.cpp,
-// sweep_command.cpp).
+// sweep_command.cpp, protocols_command.cpp).
 #include "scenarios/cli/command_line.hpp"
 
 #include <cstdio>
@@ -10,6 +10,7 @@
 
 #include "scenarios/cli/command_output.hpp"
 #include "scenarios/cli/logging_setup.hpp"
+#include "scenarios/cli/protocols_command.hpp"
 #include "scenarios/cli/render_command.hpp"
 #include "scenarios/cli/run_command.hpp"
 #include "scenarios/cli/sweep_command.hpp"
@@ -30,6 +31,8 @@ int main(int argc, char** argv) {
   CLI::App* render = add_render_subcommand(app, render_args);
   scenarios::SweepArgs sweep_args;
   CLI::App* sweep = scenarios::add_sweep_subcommand(app, sweep_args);
+  ProtocolsArgs protocols_args;
+  CLI::App* protocols = add_protocols_subcommand(app, protocols_args);
 
   try {
     app.parse(argc, argv);
@@ -44,6 +47,7 @@ int main(int argc, char** argv) {
     if (*validate) return run_validate_command(validate_args);
     if (*render) return run_render_command(render_args);
     if (*sweep) return scenarios::run_sweep_command(sweep_args);
+    if (*protocols) return run_protocols_command(protocols_args);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "masnet: internal error: %s\n", e.what());
     return kInternalError;

@@ -1,5 +1,5 @@
 #pragma once
-// The `masnet` command line: run, validate, render and sweep (docs/scenario-reference.md,
+// The `masnet` command line: run, validate, render, sweep and protocols (docs/scenario-reference.md,
 // docs/outputs.md, docs/sweeps.md). A program of one's own registers its protocols first and
 // then hands over to masnet::cli::main, which serves them like the built-in ones.
 namespace masnet::cli {
