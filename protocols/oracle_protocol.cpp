@@ -38,14 +38,7 @@ void OracleProtocol::update() {
   record.radius = 2.0 * max_vertex_distance(truth.polygon, record.position);
   record.cell = std::move(truth.polygon);
   record.neighbours = std::move(truth.neighbours);
-  if (accumulator.has_mass()) {
-    last_target_ = accumulator.centroid();
-    host_.set_target(last_target_);
-  } else {
-    record.no_mass = true;  // keep the previous target
-  }
-  record.centroid = last_target_;
-  record.finished = host_.now();
+  last_target_ = head_for_centroid(host_, accumulator, record, last_target_);
   last_cell_ = record.cell;
   log_update_end(log_, record);
   host_.update_finished(record);

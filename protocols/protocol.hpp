@@ -37,6 +37,22 @@ class RobotProtocol {
   virtual const std::vector<CellReading>& cell_readings() const = 0;
 };
 
+/// The end of a Lloyd update: the robot heads for the centroid of the mass gathered, or keeps
+/// `target` when there was none (record.no_mass). Sets record.centroid and record.finished and
+/// returns the target the robot now holds.
+inline Vec2 head_for_centroid(RobotHost& host, const CentroidAccumulator& accumulator,
+                              UpdateRecord& record, Vec2 target) {
+  if (accumulator.has_mass()) {
+    target = accumulator.centroid();
+    host.set_target(target);
+  } else {
+    record.no_mass = true;  // keep the previous target
+  }
+  record.centroid = target;
+  record.finished = host.now();
+  return target;
+}
+
 class SensorProtocol {
  public:
   virtual ~SensorProtocol() = default;

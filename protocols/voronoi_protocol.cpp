@@ -201,14 +201,7 @@ void VoronoiProtocol::finish_update(bool truncated) {
   for (const HeardNeighbour& n : neighbours_)
     record_.heard.push_back({n.robot, n.position});
   std::sort(record_.neighbours.begin(), record_.neighbours.end());
-  if (accumulator.has_mass()) {
-    last_target_ = accumulator.centroid();
-    host_.set_target(last_target_);
-  } else {
-    record_.no_mass = true;  // keep the previous target
-  }
-  record_.centroid = last_target_;
-  record_.finished = host_.now();
+  last_target_ = head_for_centroid(host_, accumulator, record_, last_target_);
   last_cell_ = record_.cell;
   log_update_end(log_, record_);
   if (params_.variant == VoronoiVariant::radius_doubling) decay_range();

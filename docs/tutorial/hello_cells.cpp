@@ -113,15 +113,8 @@ class HelloCells final : public mp::RobotProtocol {
       cell_readings_.push_back({r.position, r.reading});
     }
     record_.readings = static_cast<std::uint32_t>(cell_readings_.size());
-    if (accumulator.has_mass()) {
-      target_ = accumulator.centroid();
-      host_.set_target(target_);
-    } else {
-      record_.no_mass = true;
-      target_ = record_.update == 1 ? record_.position : target_;
-    }
-    record_.centroid = target_;
-    record_.finished = host_.now();
+    if (record_.update == 1) target_ = record_.position;
+    target_ = mp::head_for_centroid(host_, accumulator, record_, target_);  // or keep the target
     cell_ = record_.cell;
     host_.update_finished(record_);
   }
