@@ -120,7 +120,6 @@ class VoronoiProtocol final : public RobotProtocol {
   std::uint32_t unchanged_streak_ = 0;
   double last_final_radius_ = -1.0;
   Vec2 last_target_{0, 0};
-  bool has_target_ = false;
   ConvexPolygon last_cell_;
   std::vector<CellReading> cell_readings_;
 
