@@ -126,10 +126,10 @@ constexpr int kTagResult = 3;  // worker -> 0: chars, RunResult::to_json() text
 // Rank 0: a work queue. Its own threads take runs too; each other rank asks for as many runs
 // as it has threads and gets a new one for every result it sends back.
 int mpi_root(const SweepDef& sweep, const SweepOptions& options, bool quiet, int size) {
-  std::unique_ptr<SweepSession> session;
+  std::unique_ptr<SweepSession> results;
   int status = 0;
   try {
-    session = std::make_unique<SweepSession>(sweep, expand_sweep(sweep), options);
+    results = std::make_unique<SweepSession>(sweep, expand_sweep(sweep), options);
   } catch (const SweepOutputError& e) {
     std::fprintf(stderr, "masnet sweep: %s\n", e.what());
     status = kBadInput;
@@ -137,7 +137,7 @@ int mpi_root(const SweepDef& sweep, const SweepOptions& options, bool quiet, int
   MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
   if (status != 0) return status;
 
-  std::deque<std::size_t> queue(session->pending().begin(), session->pending().end());
+  std::deque<std::size_t> queue(results->pending().begin(), results->pending().end());
   const std::size_t expected = queue.size();
   std::vector<std::size_t> outstanding(static_cast<std::size_t>(size), 0);
   std::vector<bool> stopped(static_cast<std::size_t>(size), false);
@@ -160,7 +160,7 @@ int mpi_root(const SweepDef& sweep, const SweepOptions& options, bool quiet, int
   };
   std::size_t received = 0;
   {
-    SweepWorkers local(sweep, session->runs(), options.out_dir, options.jobs);
+    SweepWorkers local(sweep, results->runs(), options.out_dir, options.jobs);
     auto fill_local = [&] {
       while (local.in_flight() < static_cast<std::size_t>(options.jobs) && !queue.empty()) {
         local.submit(queue.front());
@@ -192,7 +192,7 @@ int mpi_root(const SweepDef& sweep, const SweepOptions& options, bool quiet, int
           --outstanding[static_cast<std::size_t>(source)];
           send_task(source);
           stop_if_done(source);
-          session->record(RunResult::from_json(nlohmann::json::parse(text)));
+          results->record(RunResult::from_json(nlohmann::json::parse(text)));
           ++received;
         } else {
           throw std::runtime_error("unexpected MPI message tag " + std::to_string(st.MPI_TAG));
@@ -200,14 +200,14 @@ int mpi_root(const SweepDef& sweep, const SweepOptions& options, bool quiet, int
       }
       // Local results; when idle this wait is the polling interval.
       while (auto r = local.next(std::chrono::milliseconds(busy ? 0 : 2))) {
-        session->record(*r);
+        results->record(*r);
         ++received;
         fill_local();
         busy = true;
       }
     }
   }
-  const SweepCounts counts = session->finish();
+  const SweepCounts counts = results->finish();
   print_counts(counts, options, quiet);
   int code = counts.exit_code();
   MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);

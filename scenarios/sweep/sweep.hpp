@@ -202,7 +202,7 @@ class SweepSession {
   void draw_progress(bool final);
 };
 
-/// The whole sweep in this process: session + workers. `on_result`, if given, is called after
+/// The whole sweep in this process: results + workers. `on_result`, if given, is called after
 /// each record (tests count executed runs with it).
 SweepCounts run_sweep_locally(const SweepDef& sweep, const SweepOptions& options,
                               const std::function<void(const RunResult&)>& on_result = {});
