@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <stdexcept>
 
 #include "sim/random.hpp"
 
@@ -24,12 +23,6 @@ std::uint32_t interest_mask(const std::vector<net::MessageType>& types) {
   for (net::MessageType t : types)
     mask |= 1u << static_cast<unsigned>(t);
   return mask;
-}
-
-const protocols::ProtocolDefinition& definition_of(const std::string& kind) {
-  const protocols::ProtocolDefinition* definition = protocols::find_protocol(kind);
-  if (!definition) throw std::invalid_argument("no protocol named '" + kind + "'");
-  return *definition;
 }
 
 double diameter(const protocols::ConvexPolygon& polygon) {
@@ -164,7 +157,7 @@ World::World(sim::Simulator& simulator, const WorldDef& def)
       field_(def.field),
       protocol_context_{def.domain, def.scaling, def.radio.max_range, def.robots.size(),
                         def.sensors.size()},
-      definition_(&definition_of(def.protocol.kind)),
+      definition_(&protocols::protocol_named(def.protocol.kind)),
       truthful_factory_(protocols::ground_truth_factory(def.protocol.kind)),
       sensor_protocol_(definition_->make_sensor(
           protocols::SensorSetup{protocol_context_, def_.protocol.params, &log_})) {

@@ -104,12 +104,17 @@ std::vector<const ProtocolDefinition*> registered_protocols() {
   return all;
 }
 
+const ProtocolDefinition& protocol_named(std::string_view name) {
+  const ProtocolDefinition* definition = find_protocol(name);
+  if (!definition) throw std::invalid_argument(fmt::format("no protocol named '{}'", name));
+  return *definition;
+}
+
 ProtocolChoice choose_protocol(std::string_view kind) {
-  const ProtocolDefinition* definition = find_protocol(kind);
-  if (!definition) throw std::invalid_argument(fmt::format("no protocol named '{}'", kind));
+  const ProtocolDefinition& definition = protocol_named(kind);
   ProtocolChoice choice;
-  choice.kind = definition->name;
-  choice.params = ParamValues::defaults(definition->params);
+  choice.kind = definition.name;
+  choice.params = ParamValues::defaults(definition.params);
   return choice;
 }
 

@@ -78,6 +78,8 @@ SensorFactory paper_sensors();
 void register_protocol(ProtocolDefinition definition);
 /// The protocol registered under `name`, or null.
 const ProtocolDefinition* find_protocol(std::string_view name);
+/// The protocol registered under `name`; throws std::invalid_argument if there is none.
+const ProtocolDefinition& protocol_named(std::string_view name);
 /// Every protocol, in registration order (the built-ins first).
 std::vector<const ProtocolDefinition*> registered_protocols();
 
