@@ -3,8 +3,8 @@
 //   One PAN coordinator (short address 00:00) at the origin, n leaves (00:01 ... ) on a circle
 //   of radius 1 m; LrWpanHelper's channel (SingleModelSpectrumChannel, LogDistance loss,
 //   constant-speed delay), ConstantPositionMobilityModel. Every leaf is saturated: its first
-//   MCPS-DATA.request is issued at t = i microseconds (leaf i = 1..n) and every
-//   MCPS-DATA.confirm (any status) immediately issues the next acknowledged unicast to 00:00.
+//   MCPS-DATA.request is made at t = i microseconds (leaf i = 1..n) and every
+//   MCPS-DATA.confirm (any status) immediately requests the next acknowledged unicast to 00:00.
 //   Counts are taken over [warmup, warmup + seconds) of simulated time.
 //   --n=10 --payload=20 --seconds=20 --seed=1 --warmup=1
 //   --collisions=capture (default: ns-3 as is; a receiver locked on the first frame keeps it
@@ -254,8 +254,8 @@ int main(int argc, char** argv) {
 
     NodeContainer nodes;
     nodes.Create(n + 1);
-    LrWpanHelper helper; // SingleModelSpectrumChannel + LogDistance loss + constant-speed delay
-    NetDeviceContainer devs = helper.Install(nodes);
+    LrWpanHelper lrWpan; // SingleModelSpectrumChannel + LogDistance loss + constant-speed delay
+    NetDeviceContainer devs = lrWpan.Install(nodes);
     g_radio.resize(n + 1);
     g_leafSeq.assign(n + 1, -1);
     for (uint32_t i = 0; i <= n; ++i) {
