@@ -8,6 +8,8 @@
 #include <bit>
 #include <cstdint>
 #include <deque>
+#include <limits>
+#include <memory>
 #include <span>
 #include <thread>
 #include <utility>
@@ -16,9 +18,11 @@
 #include <emmintrin.h>  // baseline x86-64
 #endif
 
+#include "net/csma.hpp"
 #include "net/energy.hpp"
 #include "net/line_index.hpp"
 #include "net/messages.hpp"
+#include "net/propagation.hpp"
 #include "net/spatial_grid.hpp"
 #include "net/vec2.hpp"
 #include "sim/simulator.hpp"
@@ -26,8 +30,12 @@
 namespace masnet::net {
 
 /// `ideal`: no contention. `airtime`: a transmitter sends one frame at a time (its frames
-/// queue behind each other); receivers are never contended.
-enum class RadioLevel { ideal, airtime };
+/// queue behind each other); receivers are never contended. `collision`: as airtime, and two
+/// receptions that overlap at a receiver are both lost (unless one is captured). `csma`: as
+/// collision, with IEEE 802.15.4 unslotted CSMA-CA, acknowledgements and retries.
+enum class RadioLevel { ideal, airtime, collision, csma };
+
+class ContendedMedium;
 
 struct RadioParams {
   double max_range = 1.5;          ///< world units; every range is capped here
@@ -47,6 +55,13 @@ struct RadioParams {
   std::uint32_t overhearing_thread_min_nodes = 50000;
   EnergyParams energy;
   MessageSizes sizes;
+  PropagationParams propagation;  ///< `log_distance` needs level collision or csma
+  CsmaParams csma;
+  /// Capture (levels collision and csma, log_distance): an overlapped reception survives when
+  /// its SINR reaches this many dB. Off when not finite.
+  double capture_threshold_db = std::numeric_limits<double>::infinity();
+
+  bool contended() const { return level == RadioLevel::collision || level == RadioLevel::csma; }
 };
 
 /// Receives frames and battery news for all nodes of one radio (the world implements it).
@@ -159,6 +174,10 @@ class Radio {
   }
   bool alive(NodeId node) const { return nodes_[sim::index(node)].alive; }
 
+  /// What contention did, per message type and per sending node (levels collision and csma;
+  /// null otherwise).
+  const ContendedMedium* contention() const { return contended_.get(); }
+
   /// Airtime of a frame of `bytes`.
   sim::Duration airtime(std::uint32_t bytes) const;
 
@@ -170,6 +189,7 @@ class Radio {
   sim::Fingerprint traffic_fingerprint();
 
  private:
+  friend class ContendedMedium;
   static constexpr std::uint32_t kNoHotIndex = 0xFFFFFFFFu;
   // Set in the top bits of traffic words that are not a transmission's (never a time, id pair
   // or sequence number of a real run).
@@ -224,6 +244,8 @@ class Radio {
   double crossover_m_ = 0.0;
 
   void add_node(NodeId id, Node node, bool mobile, const Vec2& position);
+  /// Every node within `range` of `center` now but `skip`, in id order (the contended levels).
+  void nodes_within(const Vec2& center, double range, NodeId skip, std::vector<NodeId>& out);
   /// A unicast passes its addressee's distance (the range before the max_range cap), so the
   /// reach test need not look the addressee up again.
   bool transmit(NodeId source, NodeId destination, double range, Payload&& payload,
@@ -389,6 +411,7 @@ class Radio {
   std::vector<std::uint32_t> free_jittered_;
   std::vector<NodeId> scratch_receivers_;
   sim::Fingerprint traffic_;  // the per-transmission part of traffic_fingerprint()
+  std::unique_ptr<ContendedMedium> contended_;  // levels collision and csma
 };
 
 template <class Visit>

@@ -1,9 +1,11 @@
 // The radio set up and torn down: parameters and per-frame constants, nodes registered
 // (static or mobile) and their interests, the overhearing thread started and stopped. Nothing
 // here runs per frame; transmission and delivery are in net/radio.cpp.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "net/contended_medium.hpp"
 #include "net/radio.hpp"
 #include "sim/cpus.hpp"
 
@@ -22,6 +24,7 @@ Radio::Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t
   latency_ = sim::seconds(params_.latency_s);
   for (std::uint32_t bytes = 0; bytes < kAirtimeTableBytes; ++bytes)
     airtime_table_[bytes] = compute_airtime(bytes);
+  if (params_.contended()) contended_ = std::make_unique<ContendedMedium>(*this);
 }
 
 Radio::~Radio() {
@@ -62,6 +65,27 @@ void Radio::add_mobile_node(NodeId id, std::uint64_t random_key) {
   Node node;
   node.random_key = random_key;
   add_node(id, node, true, Vec2{0, 0});
+}
+
+void Radio::nodes_within(const Vec2& center, double range, NodeId skip,
+                         std::vector<NodeId>& out) {
+  if (index_dirty_) prepare_index();
+  out.clear();
+  if (use_lines_) {
+    const NodeId* const slots = line_index_.ids().data();
+    line_index_.for_each_run_within(center, range, [&](std::uint32_t a, std::uint32_t c) {
+      for (std::uint32_t k = a; k < c; ++k)
+        if (slots[k] != skip) out.push_back(slots[k]);
+    });
+  } else {
+    const NodeId* const slots = static_grid_.ids().data();
+    static_grid_.for_each_slot_within(center, range, [&](std::uint32_t k, double) {
+      if (slots[k] != skip) out.push_back(slots[k]);
+    });
+  }
+  for_each_mobile_within(
+      center, range, [&](NodeId id) { out.push_back(id); }, skip, sim::kNoNode);
+  std::sort(out.begin(), out.end());
 }
 
 void Radio::set_interest(NodeId node, std::uint32_t mask) {

@@ -273,46 +273,6 @@ protocols::DensityScaling read_scaling(Section s) {
   return sk;
 }
 
-net::RadioParams read_radio(Section s) {
-  net::RadioParams r;
-  r.max_range = s.number("max_range", r.max_range, Range::positive());
-  r.meters_per_unit = s.number("meters_per_unit", r.meters_per_unit, Range::positive());
-  r.latency_s = s.number("latency", r.latency_s, Range::delay());
-  // At least 1 kbit/s: the airtime of the largest message must fit the clock.
-  r.bitrate_bps = s.number("bitrate", r.bitrate_bps, Range{1e3, kMaxMagnitude});
-  r.jitter_s = s.number("jitter", r.jitter_s, Range::delay());
-  const std::string level = s.choice<std::string>(
-      "level", "airtime", {{"ideal", "ideal"}, {"airtime", "airtime"}, {"collision", "collision"}});
-  if (level == "collision")
-    s.error_at("level", "level 'collision' is not available yet (use ideal or airtime)");
-  r.level = level == "ideal" ? net::RadioLevel::ideal : net::RadioLevel::airtime;
-  r.loss = s.number("loss", r.loss, Range{0.0, 1.0, false, true});
-  Section e = s.section("energy");
-  r.energy.electronics_j_per_bit =
-      e.number("electronics", r.energy.electronics_j_per_bit, Range::non_negative());
-  r.energy.free_space_j_per_bit_m2 =
-      e.number("free_space", r.energy.free_space_j_per_bit_m2, Range::positive());
-  r.energy.multipath_j_per_bit_m4 =
-      e.number("multipath", r.energy.multipath_j_per_bit_m4, Range::positive());
-  r.energy.idle_power_w = e.number("idle_power", r.energy.idle_power_w, Range::non_negative());
-  r.energy.battery_j = e.number("battery", r.energy.battery_j, Range::non_negative());
-  e.finish();
-  Section z = s.section("sizes");
-  auto size = [&](const char* key, std::uint32_t& field) {
-    field = static_cast<std::uint32_t>(z.integer(key, field, 0, 65535));
-  };
-  size("header", r.sizes.header_bytes);
-  size("id", r.sizes.id_bytes);
-  size("position", r.sizes.position_bytes);
-  size("measurement", r.sizes.measurement_bytes);
-  size("radius", r.sizes.radius_bytes);
-  size("vertex", r.sizes.vertex_bytes);
-  size("counter", r.sizes.counter_bytes);
-  z.finish();
-  s.finish();
-  return r;
-}
-
 agents::BeaconDef read_beacons(Section s) {
   agents::BeaconDef b;
   b.senders = s.choice<agents::BeaconSenders>("senders", agents::BeaconSenders::none,

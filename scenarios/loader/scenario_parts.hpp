@@ -58,6 +58,9 @@ std::vector<Vec2> read_robots(Section s, const protocols::ConvexPolygon& domain,
 /// are validated, the chosen one's are kept (scenario_protocol.cpp).
 protocols::ProtocolChoice read_protocol(Section s);
 
+/// The `radio` section (scenario_radio.cpp).
+net::RadioParams read_radio(Section s);
+
 /// The sections a limit message points into (copies of the loader's, for their locations).
 struct LimitSections {
   Section field, scaling, robots, protocol, beacons, output;
