@@ -219,7 +219,7 @@ void ContendedMedium::begin_transmission(NodeId node, const Frame& frame, bool i
     radio_.total_heard_bytes_ += frame.size_bytes;
     if (!frame.is_broadcast() && hearer != frame.destination) ++radio_.overheard_count_[hot];
     if (battery && radio_.params_.energy.idle_power_w > 0) radio_.schedule_depletion(hearer);
-    Reception r{hearer, hot, power, 0.0, false, false};
+    Reception r{hearer, hot, power};
     Mac& h = mac(hearer);
     if (h.deaf_until > now) r.locked_out = true;  // turning around or sending
     // A frame that ends now is over: one that starts now does not overlap it.
@@ -227,11 +227,21 @@ void ContendedMedium::begin_transmission(NodeId node, const Frame& frame, bool i
       const Transmission& other_tx = transmissions_[key >> 32];
       if (other_tx.end <= now) continue;
       Reception& other = transmissions_[key >> 32].receptions[key & 0xFFFFFFFFu];
+      const sim::Time overlap_end = std::min(tx.end, other_tx.end);
+      if (other.locked_out) {
+        // The radio never synchronised on that one: this frame may still be received, through it.
+        r.overlapped = true;
+        r.interference_mw += other.power_mw;
+        r.overlap_from = std::min(r.overlap_from, now);
+        r.overlap_until = std::max(r.overlap_until, overlap_end);
+        continue;
+      }
       // The receiver is locked onto the earlier frame: this one is only interference there.
       other.overlapped = true;
       other.interference_mw += power;
+      other.overlap_from = std::min(other.overlap_from, now);
+      other.overlap_until = std::max(other.overlap_until, overlap_end);
       r.locked_out = true;
-      r.interference_mw += other.power_mw;
     }
     h.receiving.push_back((std::uint64_t{slot} << 32) | tx.receptions.size());
     tx.receptions.push_back(r);
@@ -259,8 +269,16 @@ int ContendedMedium::outcome(const Transmission& tx, const Reception& r) const {
   const std::uint64_t sender_key = radio_.nodes_[sim::index(tx.frame.source)].random_key;
   const std::uint64_t receiver_key = radio_.nodes_[sim::index(r.receiver)].random_key;
   double survive = 1.0 - radio_.params_.loss;
-  if (propagation_.model == PropagationModel::log_distance)
-    survive *= oqpsk_frame_success(sinr, 8.0 * tx.frame.size_bytes);
+  if (propagation_.model == PropagationModel::log_distance) {
+    // The bits sent while others overlapped see the SINR, the rest the SNR.
+    const double bits = 8.0 * tx.frame.size_bytes;
+    const double overlapped_share =
+        r.overlapped ? sim::to_seconds(r.overlap_until - r.overlap_from) /
+                           sim::to_seconds(tx.end - tx.start)
+                     : 0.0;
+    survive *= oqpsk_frame_success(sinr, bits * overlapped_share) *
+               oqpsk_frame_success(r.power_mw / noise_mw_, bits * (1.0 - overlapped_share));
+  }
   if (survive >= 1.0) return 0;
   const double u =
       sim::keyed_uniform01(radio_.seed_, kReceptionPurpose, sender_key, receiver_key, tx.attempt);

@@ -72,6 +72,7 @@ class ContendedMedium {
     std::uint32_t hot = 0;
     double power_mw = 0.0;
     double interference_mw = 0.0;  // summed over every frame that overlapped it
+    sim::Time overlap_from = sim::kTimeMax, overlap_until{};  // the span others overlapped
     bool overlapped = false;  // another frame arrived while this one did
     bool locked_out = false;  // the receiver was busy with another frame or sending
   };
