@@ -39,8 +39,8 @@ ContendedMedium::ContendedMedium(Radio& radio)
 bool ContendedMedium::send(NodeId source, NodeId destination, double range, Payload&& payload) {
   while (macs_.size() < radio_.nodes_.size()) {
     Mac& fresh = macs_.emplace_back();
-    fresh.random = sim::RandomStream::keyed(radio_.seed_, radio_.nodes_[macs_.size() - 1].random_key,
-                                            kBackoffPurpose);
+    fresh.random = sim::RandomStream::keyed(
+        radio_.seed_, radio_.nodes_[macs_.size() - 1].random_key, kBackoffPurpose);
   }
   const std::size_t source_index = sim::index(source);
   if (radio_.battery_limited() && !radio_.nodes_[source_index].alive) {
@@ -93,8 +93,9 @@ void ContendedMedium::back_off(NodeId node) {
   const std::uint64_t periods = m.random.below(std::uint64_t{1} << m.backoff_exponent);
   ++m.counters.backoffs;
   ++totals_[static_cast<std::size_t>(m.queue.front().frame.type)].backoffs;
-  radio_.simulator_.after(symbols(static_cast<std::uint32_t>(periods) * params_.unit_backoff_symbols),
-                          [this, node] { assess_channel(node); });
+  radio_.simulator_.after(
+      symbols(static_cast<std::uint32_t>(periods) * params_.unit_backoff_symbols),
+      [this, node] { assess_channel(node); });
 }
 
 void ContendedMedium::assess_channel(NodeId node) {
@@ -151,10 +152,10 @@ bool ContendedMedium::channel_busy(NodeId node) const {
 double ContendedMedium::received_power_mw(const Transmission& tx, NodeId receiver,
                                           double distance_m) const {
   if (propagation_.model == PropagationModel::unit_disk) return 1.0;
-  const double dbm =
-      propagation_.tx_power_dbm - path_loss_db(propagation_, distance_m) -
-      shadowing_db(propagation_, radio_.seed_, radio_.nodes_[sim::index(tx.frame.source)].random_key,
-                   radio_.nodes_[sim::index(receiver)].random_key);
+  const double dbm = propagation_.tx_power_dbm - path_loss_db(propagation_, distance_m) -
+                     shadowing_db(propagation_, radio_.seed_,
+                                  radio_.nodes_[sim::index(tx.frame.source)].random_key,
+                                  radio_.nodes_[sim::index(receiver)].random_key);
   return dbm_to_mw(dbm);
 }
 
@@ -163,8 +164,9 @@ void ContendedMedium::begin_transmission(NodeId node, const Frame& frame, bool i
   const std::size_t node_index = sim::index(node);
   const bool battery = radio_.battery_limited();
   const double bits = 8.0 * frame.size_bytes;
-  const double tx_j = tx_energy_j(radio_.params_.energy, bits,
-                                  frame.range * radio_.params_.meters_per_unit, radio_.crossover_m_);
+  const double tx_j =
+      tx_energy_j(radio_.params_.energy, bits, frame.range * radio_.params_.meters_per_unit,
+                  radio_.crossover_m_);
   Mac& m = mac(node);
   if (battery && !radio_.afford(node, tx_j)) {
     if (!is_ack) drop_head(node);
@@ -253,18 +255,18 @@ void ContendedMedium::begin_transmission(NodeId node, const Frame& frame, bool i
   on_air_.push_back(slot);
   radio_.traffic_.mix(static_cast<std::uint64_t>(sim::to_ns(now)));
   radio_.traffic_.mix((std::uint64_t{sim::index(node)} << 32) | sim::index(frame.destination));
-  radio_.traffic_.mix((std::uint64_t{is_ack ? 0xFFu : static_cast<std::uint8_t>(frame.type)} << 32) |
-                      frame.size_bytes);
+  radio_.traffic_.mix(
+      (std::uint64_t{is_ack ? 0xFFu : static_cast<std::uint8_t>(frame.type)} << 32) |
+      frame.size_bytes);
   radio_.simulator_.at(tx.end, [this, slot] { end_transmission(slot); });
 }
 
 int ContendedMedium::outcome(const Transmission& tx, const Reception& r) const {
   if (r.locked_out) return 1;
   const double sinr = r.power_mw / (noise_mw_ + r.interference_mw);
-  if (r.overlapped &&
-      !(std::isfinite(radio_.params_.capture_threshold_db) &&
-        propagation_.model == PropagationModel::log_distance &&
-        10.0 * std::log10(sinr) >= radio_.params_.capture_threshold_db))
+  if (r.overlapped && !(std::isfinite(radio_.params_.capture_threshold_db) &&
+                        propagation_.model == PropagationModel::log_distance &&
+                        10.0 * std::log10(sinr) >= radio_.params_.capture_threshold_db))
     return 1;
   const std::uint64_t sender_key = radio_.nodes_[sim::index(tx.frame.source)].random_key;
   const std::uint64_t receiver_key = radio_.nodes_[sim::index(r.receiver)].random_key;
@@ -273,9 +275,9 @@ int ContendedMedium::outcome(const Transmission& tx, const Reception& r) const {
     // The bits sent while others overlapped see the SINR, the rest the SNR.
     const double bits = 8.0 * tx.frame.size_bytes;
     const double overlapped_share =
-        r.overlapped ? sim::to_seconds(r.overlap_until - r.overlap_from) /
-                           sim::to_seconds(tx.end - tx.start)
-                     : 0.0;
+        r.overlapped
+            ? sim::to_seconds(r.overlap_until - r.overlap_from) / sim::to_seconds(tx.end - tx.start)
+            : 0.0;
     survive *= oqpsk_frame_success(sinr, bits * overlapped_share) *
                oqpsk_frame_success(r.power_mw / noise_mw_, bits * (1.0 - overlapped_share));
   }
@@ -335,8 +337,8 @@ void ContendedMedium::end_transmission(std::uint32_t index) {
   Mac& m = mac(source);
   if (csma_ && !tx.frame.is_broadcast()) {
     m.awaiting_ack = true;
-    m.ack_timer = radio_.simulator_.after(
-        symbols(params_.ack_wait_symbols), [this, source] { ack_timed_out(source); });
+    m.ack_timer = radio_.simulator_.after(symbols(params_.ack_wait_symbols),
+                                          [this, source] { ack_timed_out(source); });
     return;
   }
   finish_head(source);
@@ -350,18 +352,19 @@ void ContendedMedium::delivered(const Transmission& tx, const Reception& r) {
     const NodeId receiver = r.receiver;
     const std::uint32_t sequence = tx.mac_sequence;
     go_deaf(receiver, 2 * symbols(params_.turnaround_symbols) + radio_.airtime(params_.ack_bytes));
-    radio_.simulator_.after(symbols(params_.turnaround_symbols), [this, receiver, source, sequence] {
-      const double range = (radio_.position(source) - radio_.position(receiver)).norm();
-      const Frame ack{receiver,
-                      source,
-                      MessageType::beacon,
-                      params_.ack_bytes,
-                      std::min(range, radio_.params_.max_range),
-                      radio_.simulator_.now(),
-                      0,
-                      Payload{}};
-      begin_transmission(receiver, ack, true, sequence);
-    });
+    radio_.simulator_.after(
+        symbols(params_.turnaround_symbols), [this, receiver, source, sequence] {
+          const double range = (radio_.position(source) - radio_.position(receiver)).norm();
+          const Frame ack{receiver,
+                          source,
+                          MessageType::beacon,
+                          params_.ack_bytes,
+                          std::min(range, radio_.params_.max_range),
+                          radio_.simulator_.now(),
+                          0,
+                          Payload{}};
+          begin_transmission(receiver, ack, true, sequence);
+        });
     const std::uint64_t link = (std::uint64_t{sim::index(r.receiver)} << 32) | sim::index(source);
     const auto [it, inserted] = last_delivered_.try_emplace(link, tx.mac_sequence);
     if (!inserted) {
@@ -464,15 +467,15 @@ void ContendedMedium::record_latency(MessageType type, double latency_s) {
 double ContendedMedium::latency_quantile_s(MessageType type, double q) const {
   const std::vector<std::uint64_t>& bins = latency_bins_[static_cast<std::size_t>(type)];
   std::uint64_t total = 0;
-  for (const std::uint64_t count : bins) total += count;
+  for (const std::uint64_t count : bins)
+    total += count;
   if (total == 0) return 0.0;
   const auto wanted = static_cast<std::uint64_t>(std::ceil(q * static_cast<double>(total)));
   std::uint64_t seen = 0;
   for (std::size_t bin = 0; bin < bins.size(); ++bin) {
     seen += bins[bin];
     if (seen >= std::max<std::uint64_t>(wanted, 1))
-      return kLatencyFloor_s *
-             std::pow(10.0, static_cast<double>(bin + 1) / kLatencyBinsPerDecade);
+      return kLatencyFloor_s * std::pow(10.0, static_cast<double>(bin + 1) / kLatencyBinsPerDecade);
   }
   return kLatencyFloor_s * std::pow(10.0, kLatencyDecades);
 }

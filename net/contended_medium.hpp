@@ -60,8 +60,8 @@ class ContendedMedium {
     std::uint32_t backoffs_this_frame = 0;  // NB
     std::uint32_t backoff_exponent = 0;     // BE
     std::uint32_t next_sequence = 0;
-    std::uint64_t attempts = 0;    // keys the per-attempt draws
-    sim::Time deaf_until{};  // turning around or sending: frames that start now are lost
+    std::uint64_t attempts = 0;  // keys the per-attempt draws
+    sim::Time deaf_until{};      // turning around or sending: frames that start now are lost
     sim::EventId ack_timer;
     sim::RandomStream random{0};
     std::vector<std::uint64_t> receiving;  // (transmission << 32 | reception) in progress

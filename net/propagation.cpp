@@ -12,9 +12,9 @@ namespace {
 constexpr std::uint64_t kShadowingPurpose = sim::purpose("radio.shadowing");
 
 // (−1)^k C(16, k) for k = 0..16.
-constexpr std::array<double, 17> kSignedBinomial16 = {
-    1,     -16,   120,  -560, 1820, -4368, 8008, -11440, 12870,
-    -11440, 8008, -4368, 1820, -560, 120,   -16,  1};
+constexpr std::array<double, 17> kSignedBinomial16 = {1,    -16,    120,   -560,   1820, -4368,
+                                                      8008, -11440, 12870, -11440, 8008, -4368,
+                                                      1820, -560,   120,   -16,    1};
 }  // namespace
 
 double path_loss_db(const PropagationParams& p, double distance_m) {

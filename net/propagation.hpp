@@ -36,7 +36,11 @@ double oqpsk_bit_error_rate(double sinr);
 /// Probability that a frame of `bits` survives at `sinr`: (1 − BER)^bits.
 double oqpsk_frame_success(double sinr, double bits);
 
-inline double dbm_to_mw(double dbm) { return std::pow(10.0, dbm / 10.0); }
-inline double mw_to_dbm(double mw) { return 10.0 * std::log10(mw); }
+inline double dbm_to_mw(double dbm) {
+  return std::pow(10.0, dbm / 10.0);
+}
+inline double mw_to_dbm(double mw) {
+  return 10.0 * std::log10(mw);
+}
 
 }  // namespace masnet::net

@@ -237,8 +237,9 @@ void Radio::kill(NodeId id) {  // the battery is empty
 bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& payload,
                      double destination_distance) {
   if (index_dirty_) prepare_index();
-  if (contended_) return contended_->send(source, destination, std::min(range, params_.max_range),
-                                          std::move(payload));
+  if (contended_)
+    return contended_->send(source, destination, std::min(range, params_.max_range),
+                            std::move(payload));
   const std::size_t source_index = sim::index(source);
   const bool battery = battery_limited();
   // Only a battery kills a node: without one every node is alive, and its cold record is not

@@ -67,8 +67,7 @@ void Radio::add_mobile_node(NodeId id, std::uint64_t random_key) {
   add_node(id, node, true, Vec2{0, 0});
 }
 
-void Radio::nodes_within(const Vec2& center, double range, NodeId skip,
-                         std::vector<NodeId>& out) {
+void Radio::nodes_within(const Vec2& center, double range, NodeId skip, std::vector<NodeId>& out) {
   if (index_dirty_) prepare_index();
   out.clear();
   if (use_lines_) {

@@ -8,10 +8,10 @@ namespace {
 void read_propagation(Section& radio, net::RadioParams& r) {
   Section p = radio.section("propagation");
   net::PropagationParams& q = r.propagation;
-  q.model = p.choice<net::PropagationModel>(
-      "model", q.model,
-      {{"unit_disk", net::PropagationModel::unit_disk},
-       {"log_distance", net::PropagationModel::log_distance}});
+  q.model =
+      p.choice<net::PropagationModel>("model", q.model,
+                                      {{"unit_disk", net::PropagationModel::unit_disk},
+                                       {"log_distance", net::PropagationModel::log_distance}});
   const bool log_distance = q.model == net::PropagationModel::log_distance;
   if (log_distance && !r.contended())
     p.error_at("model", "model 'log_distance' needs radio.level collision or csma");
@@ -61,8 +61,8 @@ void read_csma(Section c, net::CsmaParams& m) {
   count("lifs_symbols", m.lifs_symbols, 0, 1'000'000);
   count("max_sifs_frame_bytes", m.max_sifs_frame_bytes, 0, 65535);
   count("queue_frames", m.queue_frames, 1, 1'000'000);
-  m.carrier_sense_range = c.number("carrier_sense_range", m.carrier_sense_range,
-                                   Range::non_negative());
+  m.carrier_sense_range =
+      c.number("carrier_sense_range", m.carrier_sense_range, Range::non_negative());
   m.cca_threshold_dbm = c.number("cca_threshold", m.cca_threshold_dbm, Range{-200.0, 60.0});
   c.finish();
 }
@@ -117,6 +117,5 @@ net::RadioParams read_radio(Section s) {
   s.finish();
   return r;
 }
-
 
 }  // namespace masnet::scenarios

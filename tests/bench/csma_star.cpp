@@ -65,8 +65,8 @@ int main(int argc, char** argv) {
   // Saturation: each leaf's queue holds more frames than it can send in the run (one frame
   // takes at least 3.8 ms); leaf i starts at i µs, as the peer's.
   const auto per_leaf = static_cast<std::uint32_t>((seconds + 1.0) / 3.5e-3) + 16;
-  const net::Payload frame =
-      net::CustomMessage{net::MessageType::reading, kPpduBytes - params.sizes.header_bytes, nullptr};
+  const net::Payload frame = net::CustomMessage{net::MessageType::reading,
+                                                kPpduBytes - params.sizes.header_bytes, nullptr};
   for (int i = 1; i <= leaves; ++i)
     simulator.at(sim::Time{} + sim::seconds(i * 1e-6), [&radio, &frame, i, per_leaf] {
       for (std::uint32_t k = 0; k < per_leaf; ++k)
