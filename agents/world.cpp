@@ -155,8 +155,8 @@ World::World(sim::Simulator& simulator, const WorldDef& def)
       def_(def),
       radio_(simulator, def.radio, def.seed),
       field_(def.field),
-      protocol_context_{def.domain, def.scaling, def.radio.max_range, def.robots.size(),
-                        def.sensors.size()},
+      protocol_context_{def.domain,        def.scaling,        def.radio.max_range,
+                        def.robots.size(), def.sensors.size(), def.seed},
       definition_(&protocols::protocol_named(def.protocol.kind)),
       truthful_factory_(protocols::ground_truth_factory(def.protocol.kind)),
       sensor_protocol_(definition_->make_sensor(

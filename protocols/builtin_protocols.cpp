@@ -18,7 +18,11 @@ ParamSpec update_period_param() {
 }
 ParamSpec reply_timeout_param() {
   return ParamSpec::real("reply_timeout", 0.002, ParamRange::time(), "s",
-                         "how long a round waits for replies");
+                         "how long a round waits for replies (default per radio level)");
+}
+ParamSpec reply_jitter_param() {
+  return ParamSpec::real("reply_jitter", 0.0, ParamRange::non_negative(), "s",
+                         "sensors delay each reply by a uniform draw in [0, J)");
 }
 
 namespace {
@@ -30,6 +34,9 @@ ParamSpec period() {
 }
 ParamSpec reply_timeout() {
   return reply_timeout_param();
+}
+ParamSpec reply_jitter() {
+  return reply_jitter_param();
 }
 
 // Every built-in hears the same types, so a run's radio counters do not depend on the kind.
@@ -83,7 +90,7 @@ void register_builtin_protocols() {
   ProtocolDefinition doubling = builtin(
       "radius_doubling",
       "the paper's protocol: DISCOVER rounds with a growing radius until R >= 2d, range decay",
-      {period(), reply_timeout(),
+      {period(), reply_timeout(), reply_jitter(),
        ParamSpec::choice("growth", "to_2d", {"to_2d", "double"},
                          "R ← 2d (the paper) or R ← 2R (Cortés)"),
        ParamSpec::choice("criterion", "sensors", {"sensors", "vertices"},
@@ -109,14 +116,14 @@ void register_builtin_protocols() {
 
   ProtocolDefinition fixed = builtin(
       "fixed_radius", "one DISCOVER round with a constant radius",
-      {period(), reply_timeout(),
+      {period(), reply_timeout(), reply_jitter(),
        ParamSpec::real("radius", 0.3, ParamRange::positive(), "world units", "the constant R")});
   fixed.make_robot = voronoi(VoronoiVariant::fixed_radius);
   register_builtin(std::move(fixed), {});
 
   ProtocolDefinition gabriel =
       builtin("gabriel", "one round at max range; only Gabriel neighbours bound the cell",
-              {period(), reply_timeout()});
+              {period(), reply_timeout(), reply_jitter()});
   gabriel.make_robot = voronoi(VoronoiVariant::gabriel);
   register_builtin(std::move(gabriel), {});
 }

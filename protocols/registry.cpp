@@ -124,8 +124,10 @@ SensorFactory paper_sensors() {
     // 2-3).
     const double report_delay_s =
         setup.params.has("reply_timeout") ? setup.params.real("reply_timeout") : 0.002;
+    const double reply_jitter_s =
+        setup.params.has("reply_jitter") ? setup.params.real("reply_jitter") : 0.0;
     return std::make_unique<PaperSensorProtocol>(report_delay_s, setup.context.sensor_count,
-                                                 setup.log);
+                                                 setup.log, reply_jitter_s, setup.context.seed);
   };
 }
 

@@ -28,6 +28,7 @@ struct ProtocolContext {
   DensityScaling scaling;
   double max_range = 1.5;  ///< the radio's cap, world units
   std::size_t robot_count = 0, sensor_count = 0;
+  std::uint64_t seed = 0;  ///< the run's seed: keys draws that must not depend on event order
 };
 
 /// What a robot protocol is made from.
@@ -70,7 +71,8 @@ struct ProtocolDefinition {
 
 /// The sensors of the paper: each reports to the closest robot it heard announce itself, once,
 /// `reply_timeout` after the first announcement (0.002 s when the protocol declares no such
-/// key), and answers a SENSE whose cell holds it with its reading.
+/// key), and answers a SENSE whose cell holds it with its reading; both replies `reply_jitter`
+/// later at most (0 when not declared).
 SensorFactory paper_sensors();
 
 /// Registers `definition`. Throws std::invalid_argument when the name is taken or malformed, a
@@ -89,6 +91,9 @@ std::vector<const ProtocolDefinition*> registered_protocols();
 /// sensors report).
 ParamSpec update_period_param();
 ParamSpec reply_timeout_param();
+/// `reply_jitter`: the paper's sensors delay each REPORT and READING by a uniform draw in
+/// [0, J), so that a burst of replies does not start at one instant (docs/radio-and-energy.md).
+ParamSpec reply_jitter_param();
 
 inline constexpr std::string_view kDefaultProtocol = "radius_doubling";
 

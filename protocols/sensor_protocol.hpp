@@ -12,6 +12,7 @@
 #include "protocols/host.hpp"
 #include "protocols/protocol.hpp"
 #include "sim/log.hpp"
+#include "sim/time.hpp"
 
 namespace masnet::protocols {
 
@@ -23,22 +24,40 @@ struct SensorState {
 
 class PaperSensorProtocol final : public SensorProtocol {
  public:
-  enum Timer : std::uint32_t { kReport = 1 };
+  enum Timer : std::uint32_t { kReport = 1, kReply = 2 };
 
   /// `report_delay_s`: how long a sensor listens for POSITIONs before it reports. `log` (may
-  /// be null) gets each report at trace level.
+  /// be null) gets each report at trace level. `reply_jitter_s` > 0: each REPORT and READING
+  /// waits a uniform draw in [0, J) more, keyed by `seed`, the sensor and what it answers.
   PaperSensorProtocol(double report_delay_s, std::size_t sensor_count,
-                      const sim::Log* log = nullptr)
-      : report_delay_s_(report_delay_s), log_(log), states_(sensor_count) {}
+                      const sim::Log* log = nullptr, double reply_jitter_s = 0.0,
+                      std::uint64_t seed = 0)
+      : report_delay_s_(report_delay_s),
+        reply_jitter_s_(reply_jitter_s),
+        seed_(seed),
+        log_(log),
+        states_(sensor_count),
+        pending_(reply_jitter_s > 0 ? sensor_count : 0) {}
 
   void on_frame(SensorHost& host, const net::Frame& frame) override;
   void on_timer(SensorHost& host, std::uint32_t kind) override;
   const SensorState& state(std::size_t sensor) const { return states_[sensor]; }
 
  private:
+  struct PendingReply {
+    NodeId robot;
+    std::uint32_t update;
+  };
+  /// A uniform draw in [0, J) for the sensor `index`'s answer to (source, number).
+  sim::Duration jitter(std::size_t index, NodeId source, std::uint64_t number) const;
+
   double report_delay_s_;
+  double reply_jitter_s_;
+  std::uint64_t seed_;
   const sim::Log* log_;
   std::vector<SensorState> states_;
+  // Jittered READINGs not sent yet, per sensor, oldest first (only with a jitter).
+  std::vector<std::vector<PendingReply>> pending_;
   // A SENSE reaches its hearers one after another: its cell is prepared once for all of them
   // (the answers are contains()'s). Keyed by the frame's name, (source, number).
   ConvexMembership sense_cell_;

@@ -399,7 +399,7 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
   def.world.robots =
       read_robots(top.section("robots"), def.world.domain, def.seed, def.world.motion, caps);
   def.world.radio = read_radio(top.section("radio"));
-  def.world.protocol = read_protocol(top.section("protocol"));
+  def.world.protocol = read_protocol(top.section("protocol"), def.world.radio.level);
   def.world.beacons = read_beacons(top.section("beacons"));
   read_control(top.section("control"), def.world.field.kind == FieldKind::diffusion,
                def.world.dispenser, def);

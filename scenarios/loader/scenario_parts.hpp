@@ -56,7 +56,12 @@ std::vector<Vec2> read_robots(Section s, const protocols::ConvexPolygon& domain,
 
 /// The `protocol` section: `kind` names a registered protocol; every registered protocol's keys
 /// are validated, the chosen one's are kept (scenario_protocol.cpp).
-protocols::ProtocolChoice read_protocol(Section s);
+/// `level` chooses the default of `reply_timeout` (docs/radio-and-energy.md, "Timeouts").
+protocols::ProtocolChoice read_protocol(Section s, net::RadioLevel level);
+
+/// How long a round waits for replies unless the scenario says: replies queue behind each other
+/// from `airtime` on and back off under `csma`.
+double default_reply_timeout_s(net::RadioLevel level);
 
 /// The `radio` section (scenario_radio.cpp).
 net::RadioParams read_radio(Section s);

@@ -41,7 +41,11 @@ protocols::ParamValue read_value(Section& s, const std::string& key,
 
 }  // namespace
 
-protocols::ProtocolChoice read_protocol(Section s) {
+double default_reply_timeout_s(net::RadioLevel level) {
+  return level == net::RadioLevel::csma ? 0.008 : 0.002;
+}
+
+protocols::ProtocolChoice read_protocol(Section s, net::RadioLevel level) {
   const std::vector<const protocols::ProtocolDefinition*> all = protocols::registered_protocols();
   std::vector<std::string> names;
   for (const auto* d : all)
@@ -66,7 +70,11 @@ protocols::ProtocolChoice read_protocol(Section s) {
       if (std::find(read.begin(), read.end(), spec.key) != read.end()) continue;
       read.push_back(spec.key);
       protocols::ParamValue value;
-      if (top == spec.key) {
+      if (spec.key == "reply_timeout") {
+        protocols::ParamSpec per_level = spec;
+        per_level.default_value = default_reply_timeout_s(level);
+        value = read_value(s, spec.key, per_level);
+      } else if (top == spec.key) {
         value = read_value(s, spec.key, spec);
       } else {
         auto it = nested.find(top);

@@ -167,7 +167,7 @@ net::ContentionCounters hidden_terminals(net::RadioLevel level, std::uint32_t re
 }  // namespace
 
 TEST_CASE(
-    "hidden terminal: simultaneous A→B and C→B both fail; carrier sense cannot help, "
+    "hidden terminal: simultaneous A→B and C→B both fail, carrier sense cannot help, and "
     "retries recover part of them",
     "[contention]") {
   const net::ContentionCounters aloha = hidden_terminals(net::RadioLevel::collision, 0, 1);

@@ -60,10 +60,11 @@ TEST_CASE("values in messages are escaped and cut at 80 characters", "[scenarios
 TEST_CASE("a --set value is cut in its location too", "[scenarios]") {
   const std::string huge(1 << 20, 'a');
   CHECK(problems("duration: 1\n", {"radio.level=" + huge}) ==
-        std::vector<std::string>{"--set radio.level=" + std::string(68, 'a') +
-                                 "… (1048588 bytes in all): "
-                                 "radio.level: expected one of ideal, airtime, collision, got '" +
-                                 std::string(80, 'a') + "… (1048576 bytes in all)'"});
+        std::vector<std::string>{
+            "--set radio.level=" + std::string(68, 'a') +
+            "… (1048588 bytes in all): "
+            "radio.level: expected one of ideal, airtime, collision, csma, got '" +
+            std::string(80, 'a') + "… (1048576 bytes in all)'"});
 }
 
 TEST_CASE("a key given without a value is an error for every kind of key", "[scenarios]") {

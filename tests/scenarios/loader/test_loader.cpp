@@ -132,9 +132,14 @@ const std::vector<Case> kCases = {
     {"control_without_diffusion.yaml",
      {"control_without_diffusion.yaml:5:15: control.dispensers: the control section applies to "
       "field kind diffusion"}},
-    {"collision_level.yaml",
-     {"collision_level.yaml:3:10: radio.level: level 'collision' is not available yet (use "
-      "ideal or airtime)"}},
+    {"log_distance_airtime.yaml",
+     {"log_distance_airtime.yaml:4:24: radio.propagation.model: model 'log_distance' needs "
+      "radio.level collision or csma"}},
+    {"csma_knob_at_collision.yaml",
+     {"csma_knob_at_collision.yaml:4:11: radio.jitter: 'jitter' applies to levels ideal and "
+      "airtime (under contention, frames take the time the medium gives them; a sensor's reply "
+      "jitter is protocol.reply_jitter)",
+      "csma_knob_at_collision.yaml:5:9: radio.csma: 'csma' applies to level csma"}},
     {"snapshot_after_end.yaml",
      {"snapshot_after_end.yaml:3:23: output.snapshots[2]: must be in [0, 5] (got 7)"}},
     {"unsupported_groups.yaml",
@@ -182,7 +187,7 @@ const std::vector<Case> kCases = {
      {"alias_bomb.yaml:7:45: the aliases (*name) repeat more than 100000 nodes in all "
       "(docs/scenario-reference.md, \"Limits\")"}},
     {"long_value.yaml",
-     {"long_value.yaml:4:10: radio.level: expected one of ideal, airtime, collision, got "
+     {"long_value.yaml:4:10: radio.level: expected one of ideal, airtime, collision, csma, got "
       "'abababababababababababababababababababababababababababababababababababababababab… (1000000 "
       "bytes in all)'"}},
     {"period_below_resolution.yaml",

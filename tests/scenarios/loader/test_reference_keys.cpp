@@ -96,6 +96,7 @@ std::set<std::string> loader_keys() {
        "robots={layout: random, count: 3, dynamics: discrete_lloyd}",
        "density_scaling={kind: power, gamma: 2}", "protocol={kind: fixed_radius, radius: 0.2}",
        "beacons={senders: all, period: 0.5, range: 0.1}", "limits={allow_huge: false}"},
+      {"radio={level: csma, propagation: {model: log_distance}, capture_threshold: 3}"},
       {"field={kind: uniform, value: 2}", "robots={layout: positions, positions: [[0.5, 0.5]]}",
        "density_scaling={kind: saturate, c: 2}", "sensors={layout: grid, alignment: interior}"},
   };
