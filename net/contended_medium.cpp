@@ -37,6 +37,11 @@ ContendedMedium::ContendedMedium(Radio& radio)
                                : radio.params_.max_range) {}
 
 bool ContendedMedium::send(NodeId source, NodeId destination, double range, Payload&& payload) {
+  if (deaf_until_.size() < radio_.nodes_.size()) {
+    deaf_until_.resize(radio_.nodes_.size());
+    locked_.resize(radio_.nodes_.size(), kNotLocked);
+    receiving_.resize(radio_.nodes_.size());
+  }
   while (macs_.size() < radio_.nodes_.size()) {
     Mac& fresh = macs_.emplace_back();
     fresh.random = sim::RandomStream::keyed(
@@ -125,11 +130,12 @@ void ContendedMedium::assess_channel(NodeId node) {
 }
 
 void ContendedMedium::go_deaf(NodeId node, sim::Duration for_at_least) {
-  Mac& m = mac(node);
-  m.deaf_until = std::max(m.deaf_until, radio_.simulator_.now() + for_at_least);
-  // Half duplex: whatever it was receiving is lost.
-  for (const std::uint64_t key : m.receiving)
-    transmissions_[key >> 32].receptions[key & 0xFFFFFFFFu].locked_out = true;
+  sim::Time& deaf_until = deaf_until_[sim::index(node)];
+  deaf_until = std::max(deaf_until, radio_.simulator_.now() + for_at_least);
+  // Half duplex: what it was receiving is lost (the others in progress were lost already).
+  std::uint64_t& locked = locked_[sim::index(node)];
+  if (locked != kNotLocked) reception(locked).locked_out = true;
+  locked = kNotLocked;
 }
 
 bool ContendedMedium::channel_busy(NodeId node) const {
@@ -222,30 +228,35 @@ void ContendedMedium::begin_transmission(NodeId node, const Frame& frame, bool i
     if (!frame.is_broadcast() && hearer != frame.destination) ++radio_.overheard_count_[hot];
     if (battery && radio_.params_.energy.idle_power_w > 0) radio_.schedule_depletion(hearer);
     Reception r{hearer, hot, power};
-    Mac& h = mac(hearer);
-    if (h.deaf_until > now) r.locked_out = true;  // turning around or sending
+    const std::size_t h = sim::index(hearer);
+    const std::uint64_t key = (std::uint64_t{slot} << 32) | tx.receptions.size();
     // A frame that ends now is over: one that starts now does not overlap it.
-    for (const std::uint64_t key : h.receiving) {
-      const Transmission& other_tx = transmissions_[key >> 32];
-      if (other_tx.end <= now) continue;
-      Reception& other = transmissions_[key >> 32].receptions[key & 0xFFFFFFFFu];
-      const sim::Time overlap_end = std::min(tx.end, other_tx.end);
-      if (other.locked_out) {
-        // The radio never synchronised on that one: this frame may still be received, through it.
-        r.overlapped = true;
-        r.interference_mw += other.power_mw;
-        r.overlap_from = std::min(r.overlap_from, now);
-        r.overlap_until = std::max(r.overlap_until, overlap_end);
-        continue;
-      }
-      // The receiver is locked onto the earlier frame: this one is only interference there.
+    std::uint64_t& locked = locked_[h];
+    if (locked != kNotLocked && transmissions_[locked >> 32].end <= now) locked = kNotLocked;
+    if (deaf_until_[h] > now) {
+      r.locked_out = true;  // turning around or sending
+    } else if (locked != kNotLocked) {
+      // The receiver is synchronised on an earlier frame: this one is only interference there.
+      Reception& other = reception(locked);
       other.overlapped = true;
       other.interference_mw += power;
       other.overlap_from = std::min(other.overlap_from, now);
-      other.overlap_until = std::max(other.overlap_until, overlap_end);
+      other.overlap_until =
+          std::max(other.overlap_until, std::min(tx.end, transmissions_[locked >> 32].end));
       r.locked_out = true;
+    } else {
+      // It synchronises on this one, through whatever it could not synchronise on before.
+      locked = key;
+      for (const InProgress& other : receiving_[h]) {
+        if (other.end <= now) continue;
+        r.overlapped = true;
+        r.interference_mw += other.power_mw;
+        r.overlap_from = std::min(r.overlap_from, now);
+        r.overlap_until = std::max(r.overlap_until, std::min(tx.end, other.end));
+      }
     }
-    h.receiving.push_back((std::uint64_t{slot} << 32) | tx.receptions.size());
+    r.in_progress_slot = static_cast<std::uint32_t>(receiving_[h].size());
+    receiving_[h].push_back(InProgress{key, tx.end, power});
     tx.receptions.push_back(r);
   }
   if (!frame.is_broadcast() && !is_ack &&
@@ -292,11 +303,16 @@ void ContendedMedium::end_transmission(std::uint32_t index) {
   // Take the frame's receptions off their receivers first: an ACK or a reply sent from a
   // handler below must not see this frame as still arriving.
   for (std::size_t k = 0; k < transmissions_[index].receptions.size(); ++k) {
-    std::vector<std::uint64_t>& list = mac(transmissions_[index].receptions[k].receiver).receiving;
+    const Reception& done = transmissions_[index].receptions[k];
+    const std::size_t receiver = sim::index(done.receiver);
+    std::vector<InProgress>& list = receiving_[receiver];
     const std::uint64_t key = (std::uint64_t{index} << 32) | k;
-    const auto at = std::find(list.begin(), list.end(), key);
-    *at = list.back();
+    // Swap with the last and pop: the moved one learns its new place.
+    const std::uint32_t at = done.in_progress_slot;
+    list[at] = list.back();
     list.pop_back();
+    if (at < list.size()) reception(list[at].reception).in_progress_slot = at;
+    if (locked_[receiver] == key) locked_[receiver] = kNotLocked;
   }
   // Handlers may send, and so grow `transmissions_`: work on a moved-out copy.
   Transmission tx = std::move(transmissions_[index]);

@@ -61,10 +61,8 @@ class ContendedMedium {
     std::uint32_t backoff_exponent = 0;     // BE
     std::uint32_t next_sequence = 0;
     std::uint64_t attempts = 0;  // keys the per-attempt draws
-    sim::Time deaf_until{};      // turning around or sending: frames that start now are lost
     sim::EventId ack_timer;
     sim::RandomStream random{0};
-    std::vector<std::uint64_t> receiving;  // (transmission << 32 | reception) in progress
     ContentionCounters counters;
   };
   struct Reception {
@@ -75,6 +73,7 @@ class ContendedMedium {
     sim::Time overlap_from = sim::kTimeMax, overlap_until{};  // the span others overlapped
     bool overlapped = false;  // another frame arrived while this one did
     bool locked_out = false;  // the receiver was busy with another frame or sending
+    std::uint32_t in_progress_slot = 0;  // where it is in its receiver's receiving_ list
   };
   struct Transmission {
     Frame frame;
@@ -116,6 +115,22 @@ class ContendedMedium {
   double noise_mw_;
   double carrier_sense_range_;
   std::vector<Mac> macs_;
+  // What every hearer of a frame reads, dense by node id (a MAC's record is far bigger): until
+  // when it is deaf (turning around or sending: frames that start meanwhile are lost), the
+  // reception its radio is synchronised on (kNotLocked if none), and every reception in
+  // progress. A reception is named (transmission << 32 | index in its receptions).
+  struct InProgress {
+    std::uint64_t reception;
+    sim::Time end;
+    double power_mw;
+  };
+  static constexpr std::uint64_t kNotLocked = ~std::uint64_t{0};
+  std::vector<sim::Time> deaf_until_;
+  std::vector<std::uint64_t> locked_;
+  std::vector<std::vector<InProgress>> receiving_;
+  Reception& reception(std::uint64_t key) {
+    return transmissions_[key >> 32].receptions[key & 0xFFFFFFFFu];
+  }
   std::vector<Transmission> transmissions_;
   std::vector<std::uint32_t> free_transmissions_;
   std::vector<std::uint32_t> on_air_;

@@ -82,9 +82,14 @@ void Radio::nodes_within(const Vec2& center, double range, NodeId skip, std::vec
       if (slots[k] != skip) out.push_back(slots[k]);
     });
   }
+  // Static nodes come in slot order (id order on rows), the few mobile ones after: sort each
+  // part only if it needs it, then merge.
+  if (!std::is_sorted(out.begin(), out.end())) std::sort(out.begin(), out.end());
+  const auto static_end = static_cast<std::ptrdiff_t>(out.size());
   for_each_mobile_within(
       center, range, [&](NodeId id) { out.push_back(id); }, skip, sim::kNoNode);
-  std::sort(out.begin(), out.end());
+  std::sort(out.begin() + static_end, out.end());
+  std::inplace_merge(out.begin(), out.begin() + static_end, out.end());
 }
 
 void Radio::set_interest(NodeId node, std::uint32_t mask) {
