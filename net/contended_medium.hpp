@@ -71,8 +71,8 @@ class ContendedMedium {
     double power_mw = 0.0;
     double interference_mw = 0.0;  // summed over every frame that overlapped it
     sim::Time overlap_from = sim::kTimeMax, overlap_until{};  // the span others overlapped
-    bool overlapped = false;  // another frame arrived while this one did
-    bool locked_out = false;  // the receiver was busy with another frame or sending
+    bool overlapped = false;             // another frame arrived while this one did
+    bool locked_out = false;             // the receiver was busy with another frame or sending
     std::uint32_t in_progress_slot = 0;  // where it is in its receiver's receiving_ list
   };
   struct Transmission {
