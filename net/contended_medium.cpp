@@ -180,6 +180,7 @@ void ContendedMedium::begin_transmission(NodeId node, const Frame& frame, bool i
   }
   radio_.senders_[node_index].energy_tx_j += tx_j;
   radio_.total_tx_j_ += tx_j;
+  radio_.tx_j_by_type_[static_cast<std::size_t>(frame.type)] += tx_j;
   if (battery && radio_.params_.energy.idle_power_w > 0) radio_.schedule_depletion(node);
 
   const sim::Time now = radio_.simulator_.now();
@@ -225,6 +226,7 @@ void ContendedMedium::begin_transmission(NodeId node, const Frame& frame, bool i
     const std::uint32_t hot = radio_.hot_[sim::index(hearer)];
     radio_.heard_bytes_[hot] += frame.size_bytes;
     radio_.total_heard_bytes_ += frame.size_bytes;
+    radio_.heard_bytes_by_type_[static_cast<std::size_t>(frame.type)] += frame.size_bytes;
     if (!frame.is_broadcast() && hearer != frame.destination) ++radio_.overheard_count_[hot];
     if (battery && radio_.params_.energy.idle_power_w > 0) radio_.schedule_depletion(hearer);
     Reception r{hearer, hot, power};
@@ -367,13 +369,14 @@ void ContendedMedium::delivered(const Transmission& tx, const Reception& r) {
     // was lost).
     const NodeId receiver = r.receiver;
     const std::uint32_t sequence = tx.mac_sequence;
+    const MessageType type = tx.frame.type;
     go_deaf(receiver, 2 * symbols(params_.turnaround_symbols) + radio_.airtime(params_.ack_bytes));
     radio_.simulator_.after(
-        symbols(params_.turnaround_symbols), [this, receiver, source, sequence] {
+        symbols(params_.turnaround_symbols), [this, receiver, source, sequence, type] {
           const double range = (radio_.position(source) - radio_.position(receiver)).norm();
           const Frame ack{receiver,
                           source,
-                          MessageType::beacon,
+                          type,  // its energy counts as the acknowledged type's
                           params_.ack_bytes,
                           std::min(range, radio_.params_.max_range),
                           radio_.simulator_.now(),

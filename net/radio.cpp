@@ -112,8 +112,11 @@ void Radio::overhearing_worker() {
     }
     if (stop_worker_.load(std::memory_order_acquire)) return;
     for (; booked != published; ++booked) {
-      for (const OverhearingJob& job : jobs_handed_[booked % kHandOverSlots])
-        worker_heard_bytes_ += book_overhearing(job) * (job.booking & (kOneOverheard - 1));
+      for (const OverhearingJob& job : jobs_handed_[booked % kHandOverSlots]) {
+        const std::uint64_t heard = book_overhearing(job) * (job.booking & (kOneOverheard - 1));
+        worker_heard_bytes_ += heard;
+        worker_heard_by_type_[job.type] += heard;
+      }
       jobs_booked_.store(booked + 1, std::memory_order_release);
       jobs_booked_.notify_one();
     }
@@ -126,6 +129,10 @@ void Radio::drain_overhearing() const {
   wait_until_worker_behind_at_most(0);
   total_heard_bytes_ += worker_heard_bytes_;
   worker_heard_bytes_ = 0;
+  for (std::size_t t = 0; t < kMaxMessageTypes; ++t) {
+    heard_bytes_by_type_[t] += worker_heard_by_type_[t];
+    worker_heard_by_type_[t] = 0;
+  }
 }
 
 const std::vector<Vec2>& Radio::mobile_positions_now() {
@@ -184,14 +191,25 @@ const Radio::NearAddressee* Radio::near_addressee(NodeId addressee, double exten
   return &near_;
 }
 
-double Radio::idle_j(const Node& node) const {
-  if (params_.energy.idle_power_w <= 0) return 0.0;
+double Radio::idle_j(NodeId id) const {
+  const EnergyParams& e = params_.energy;
+  if (e.idle_power_w <= 0) return 0.0;
+  const Node& node = nodes_[sim::index(id)];
   const sim::Time until = std::min(simulator_.now(), node.died_at);
-  return params_.energy.idle_power_w * sim::to_seconds(until - node.added_at);
+  double idle_s = sim::to_seconds(until - node.added_at);
+  if (e.model == EnergyModel::states) {
+    // Idle is what is left of its life after sending and receiving.
+    const std::uint32_t hot = hot_[sim::index(id)];
+    const double heard_bits =
+        hot == kNoHotIndex ? 0.0 : 8.0 * static_cast<double>(heard_bytes_[hot]);
+    idle_s -= senders_[sim::index(id)].energy_tx_j / (e.voltage_v * e.tx_current_a) +
+              heard_bits * e.seconds_per_bit;
+  }
+  return e.idle_power_w * std::max(idle_s, 0.0);
 }
 
 double Radio::consumed_j(NodeId id) const {
-  return senders_[sim::index(id)].energy_tx_j + idle_j(nodes_[sim::index(id)]) +
+  return senders_[sim::index(id)].energy_tx_j + idle_j(id) +
          rx_energy_j(params_.energy, 8.0 * static_cast<double>(heard_bytes_[hot_[sim::index(id)]]));
 }
 
@@ -210,7 +228,7 @@ void Radio::schedule_depletion(NodeId id) {
   Node& node = nodes_[sim::index(id)];
   const std::uint32_t hot = hot_[sim::index(id)];
   const double remaining =
-      params_.energy.battery_j - senders_[sim::index(id)].energy_tx_j - idle_j(node) -
+      params_.energy.battery_j - senders_[sim::index(id)].energy_tx_j - idle_j(id) -
       (hot == kNoHotIndex
            ? 0.0
            : rx_energy_j(params_.energy, 8.0 * static_cast<double>(heard_bytes_[hot])));
@@ -263,6 +281,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   }
   src.energy_tx_j += tx_j;
   total_tx_j_ += tx_j;
+  tx_j_by_type_[static_cast<std::size_t>(type)] += tx_j;
   if (battery && params_.energy.idle_power_w > 0) schedule_depletion(source);
   const auto type_index = static_cast<std::size_t>(type);
   MASNET_ASSERT(type_index < type_count_, "a message type registered after the radio was built");
@@ -361,8 +380,13 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     };
     if (bulk && !is_broadcast) {
       // Unicasts, the bulk of the traffic: one job each (see OverhearingJob).
-      const OverhearingJob job{center.x(),    center.y(), range,
-                               heard_booking, source_hot, destination_hot};
+      const OverhearingJob job{center.x(),
+                               center.y(),
+                               range,
+                               heard_booking,
+                               source_hot,
+                               destination_hot,
+                               static_cast<std::uint32_t>(type_index)};
       if (params_.overhearing_thread && static_count >= params_.overhearing_thread_min_nodes) {
         if (!overhearing_thread_.joinable()) start_overhearing_thread();
         jobs_filling_.push_back(job);
@@ -443,6 +467,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   totals_[type_index].rx_count += received;
   totals_[type_index].rx_bytes += received * bytes;
   total_heard_bytes_ += hearers * bytes;
+  heard_bytes_by_type_[type_index] += hearers * bytes;
   // What this frame did, in send order. Its overhearers are not here: the second thread may be
   // counting them still; they enter the traffic fingerprint as per-node sums at the end.
   traffic_.mix(static_cast<std::uint64_t>(sim::to_ns(now)));

@@ -166,6 +166,17 @@ class Radio {
     drain_overhearing();
     return rx_energy_j(params_.energy, 8.0 * static_cast<double>(total_heard_bytes_));
   }
+  /// Radio energy of the frames of one type (and, under csma, of their acknowledgements):
+  /// sending them, and every node hearing them, joules.
+  double type_tx_energy_j(MessageType type) const {
+    return tx_j_by_type_[static_cast<std::size_t>(type)];
+  }
+  double type_rx_energy_j(MessageType type) const {
+    drain_overhearing();
+    return net::rx_energy_j(
+        params_.energy,
+        8.0 * static_cast<double>(heard_bytes_by_type_[static_cast<std::size_t>(type)]));
+  }
   /// Per-node stats, idle energy brought up to now.
   NodeRadioStats stats(NodeId node);
   double energy_j(NodeId node) {
@@ -286,7 +297,7 @@ class Radio {
   bool afford(NodeId node, double energy_j);
   /// Idle energy as a function of time, not an accumulator: the value never depends on how
   /// often someone looked at it (recorders must not change the model's numbers).
-  double idle_j(const Node& node) const;
+  double idle_j(NodeId node) const;
   void schedule_depletion(NodeId id);
   void kill(NodeId id);
   /// A send refused for an empty battery, into the traffic fingerprint.
@@ -316,6 +327,10 @@ class Radio {
   // Built-in and registered message types when the radio was built: the per-node counters' stride.
   std::size_t type_count_ = message_type_count();
   double total_tx_j_ = 0.0;
+  // Energy by message type: transmit energy, and bytes heard by every hearer (receive energy
+  // is linear in them).
+  std::array<double, kMaxMessageTypes> tx_j_by_type_{};
+  mutable std::array<std::uint64_t, kMaxMessageTypes> heard_bytes_by_type_{};
   mutable std::uint64_t total_heard_bytes_ = 0;
   // E_rx is linear in bits, so a node's receive energy is E_elec·8·(bytes it heard).
   // `mutable`: bulk bookings are kept as difference arrays over slots and folded in when read.
@@ -346,6 +361,7 @@ class Radio {
     double cx = 0.0, cy = 0.0, range = 0.0;
     std::uint64_t booking = 0;  // packed heard bytes + one overheard frame
     std::uint32_t source_hot = 0, destination_hot = 0;
+    std::uint32_t type = 0;  // its message type, for the heard bytes by type
   };
   /// Books `job`; returns its static hearers.
   std::uint64_t book_overhearing(const OverhearingJob& job) const;
@@ -377,6 +393,7 @@ class Radio {
   alignas(64) mutable std::atomic<std::uint32_t> jobs_booked_{0};
   std::atomic<bool> stop_worker_{false};
   mutable std::uint64_t worker_heard_bytes_ = 0;  // the thread's, until drained
+  mutable std::array<std::uint64_t, kMaxMessageTypes> worker_heard_by_type_{};
   std::uint32_t spin_limit_ = 0;
   std::thread overhearing_thread_;
 

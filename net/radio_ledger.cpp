@@ -126,7 +126,7 @@ NodeRadioStats Radio::stats(NodeId node) {
   s.refused_count = n.refused_count;
   s.energy_tx_j = senders_[sim::index(node)].energy_tx_j;
   s.energy_rx_j = rx_energy_j(params_.energy, 8.0 * static_cast<double>(s.heard_bytes));
-  s.energy_idle_j = idle_j(n);
+  s.energy_idle_j = idle_j(node);
   s.alive = n.alive;
   s.died_at = n.died_at;
   return s;

@@ -21,6 +21,9 @@ Radio::Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t
                 "radio parameters are validated by the scenario loader");
   // Per-frame constants, computed once (each costs a rounding call or a square root).
   crossover_m_ = params_.energy.crossover_m();
+  params_.energy.seconds_per_bit = 1.0 / params_.bitrate_bps;
+  if (params_.energy.model == EnergyModel::states)
+    params_.energy.idle_power_w = params_.energy.voltage_v * params_.energy.idle_current_a;
   latency_ = sim::seconds(params_.latency_s);
   for (std::uint32_t bytes = 0; bytes < kAirtimeTableBytes; ++bytes)
     airtime_table_[bytes] = compute_airtime(bytes);
