@@ -56,6 +56,7 @@ struct LevelRun {
   ~LevelRun() {
     std::error_code ec;
     fs::remove_all(dir, ec);
+    fs::remove(dir.parent_path(), ec);  // once the other level's run is gone too
   }
 };
 
