@@ -37,6 +37,8 @@ class ContendedMedium {
   const ContentionCounters& totals(MessageType type) const {
     return totals_[static_cast<std::size_t>(type)];
   }
+  /// Nodes with counters so far: node_counters(n) needs n below it.
+  std::size_t node_count() const { return macs_.size(); }
   /// Over all message types, as sender.
   const ContentionCounters& node_counters(NodeId node) const {
     return macs_[sim::index(node)].counters;

@@ -1,5 +1,5 @@
 // The figures that follow the run over time: coverage cost, tracking, pollution, radii, messages,
-// energy and cell correctness (docs/outputs.md).
+// energy, cell correctness and collisions (docs/outputs.md).
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -286,6 +286,24 @@ void draw_correctness(cairo_t* cr, const RunData& run) {
   axes.line(t, share, Style{kBlack, 2.2}, "all updates so far");
   axes.legend(Placement::bottom_right);
   axes.title(run.name + ": cell correctness against the oracle");
+}
+
+void draw_collisions(cairo_t* cr, const RunData& run) {
+  const auto& t = column_or_empty(run.timeseries, "t_s");
+  const auto& collisions = column_or_empty(run.timeseries, "collisions");
+  Axes top = time_axes(cr, {90, 45, 640, 210}, run, {&collisions}, Scale::linear, true);
+  top.decorate("", "receptions lost to overlap");
+  top.line(t, collisions, Style{plot::categorical(4), 2.0}, "collisions so far");
+  top.legend(Placement::bottom_right);
+  top.title(run.name + ": collisions over time");
+  // The rate over each sample period: bursts show where the cumulative curve only bends.
+  std::vector<double> rate_per_s(t.size(), kNaN);
+  for (std::size_t k = 1; k < t.size() && k < collisions.size(); ++k)
+    if (t[k] > t[k - 1]) rate_per_s[k] = (collisions[k] - collisions[k - 1]) / (t[k] - t[k - 1]);
+  Axes bottom = time_axes(cr, {90, 300, 640, 210}, run, {&rate_per_s}, Scale::linear, true);
+  bottom.decorate("t (s)", "collisions per second");
+  bottom.line(t, rate_per_s, Style{plot::categorical(0), 1.5}, "per sample period");
+  bottom.legend(Placement::top_right);
 }
 
 }  // namespace masnet::scenarios::figure_parts

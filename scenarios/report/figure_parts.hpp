@@ -35,5 +35,7 @@ void draw_radius(cairo_t* cr, const RunData& run);
 void draw_messages(cairo_t* cr, const RunData& run);
 void draw_energy(cairo_t* cr, const RunData& run);
 void draw_correctness(cairo_t* cr, const RunData& run);
+/// Runs whose timeseries.csv has a `collisions` column (radio levels collision and csma).
+void draw_collisions(cairo_t* cr, const RunData& run);
 
 }  // namespace masnet::scenarios::figure_parts

@@ -482,6 +482,10 @@ std::vector<FigureInfo> write_figures(const RunData& run, const fs::path& figure
   add({"correctness", "curve",
        "Share of protocol updates whose neighbour set equals the oracle's, over time."},
       760, 500, [&](cairo_t* cr) { draw_correctness(cr, run); });
+  if (run.timeseries.has("collisions"))
+    add({"collisions", "curve",
+         "Receptions lost to overlapping frames: so far, and per second of each sample period."},
+        760, 560, [&](cairo_t* cr) { draw_collisions(cr, run); });
   return figures;
 }
 

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "scenarios/output/output_file.hpp"
+#include "scenarios/report/message_table.hpp"
 
 namespace masnet::scenarios {
 namespace fs = std::filesystem;
@@ -105,10 +106,6 @@ std::string key_value_table(const json& j, const std::string& id = {}) {
   return out + "</table>\n";
 }
 
-std::string format_count(double v) {
-  return fmt::format("{:.0f}", v);
-}
-
 // A figure as a data URI: the smaller of its SVG and PNG.
 std::string figure_uri(const fs::path& figures_dir, const std::string& stem) {
   const fs::path svg = figures_dir / (stem + ".svg"), png = figures_dir / (stem + ".png");
@@ -178,6 +175,10 @@ json chart_specs(const Table& ts) {
        "Cell correctness (all updates so far)",
        "share",
        {{"cell_correctness", "correct neighbour sets", "#2ca02c"}}},
+      {"chart-collisions",
+       "Collisions (cumulative)",
+       "receptions lost to overlap",
+       {{"collisions", "collisions", "#9467bd"}}},
   };
   static const std::vector<std::string> kPalette{"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728",
                                                  "#9467bd"};
@@ -303,36 +304,6 @@ constexpr const char* kReportScript = R"(
   document.body.setAttribute('data-charts', String(made));
 })();
 )";
-
-std::string messages_table(const json& summary) {
-  if (!summary.contains("messages")) return "<p>No message statistics.</p>\n";
-  const json& m = summary["messages"];
-  const json by_type = m.value("by_type", json::object());
-  const double total = m.contains("total") ? m["total"].value("count", 0.0) : 0.0;
-  std::string out =
-      "<table id=\"messages-by-type\"><thead><tr><th>type</th><th class=\"num\">sent</th><th "
-      "class=\"num\">bytes "
-      "sent</th><th class=\"num\">share of sent</th><th class=\"num\">receptions</th><th "
-      "class=\"num\">bytes "
-      "received</th></tr></thead><tbody>\n";
-  for (const auto& [type, v] : by_type.items()) {
-    const double count = v.value("count", 0.0);
-    out += fmt::format(
-        "<tr><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{:.1f} "
-        "%</td>"
-        "<td class=\"num\">{}</td><td class=\"num\">{}</td></tr>\n",
-        escape_html(type), format_count(count), format_count(v.value("bytes", 0.0)),
-        total > 0 ? 100.0 * count / total : 0.0, format_count(v.value("rx_count", 0.0)),
-        format_count(v.value("rx_bytes", 0.0)));
-  }
-  if (m.contains("total"))
-    out += fmt::format(
-        "<tr><th>total</th><th class=\"num\">{}</th><th class=\"num\">{}</th><th class=\"num\">100 "
-        "%</th>"
-        "<th></th><th></th></tr>\n",
-        format_count(m["total"].value("count", 0.0)), format_count(m["total"].value("bytes", 0.0)));
-  return out + "</tbody></table>\n";
-}
 
 std::string energy_table(const json& summary) {
   if (!summary.contains("energy_j")) return "<p>No energy statistics.</p>\n";

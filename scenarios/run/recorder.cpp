@@ -11,6 +11,7 @@
 
 #include "protocols/heard_cell.hpp"
 #include "scenarios/output/output_file.hpp"
+#include "scenarios/run/contention_outputs.hpp"
 
 namespace masnet::scenarios {
 namespace {
@@ -115,6 +116,8 @@ void Recorder::sample() {
     row.bytes += radio.totals(static_cast<net::MessageType>(t)).tx_bytes;
   }
   row.energy_j = radio.total_tx_energy_j() + radio.total_rx_energy_j();
+  if (const net::ContendedMedium* medium = radio.contention())
+    row.collisions = medium->total_collided();
   if (radio.params().energy.idle_power_w > 0)
     for (std::size_t n = 0; n < radio.node_count(); ++n)
       row.energy_j += radio.stats(sim::node_id(static_cast<std::uint32_t>(n))).energy_idle_j;
@@ -269,6 +272,8 @@ void Recorder::write_timeseries(const std::string& path) const {
   if (pollution) out.print(",pollution_total,pollution_integral,pollution_max,neutraliser_used");
   if (pollution && has_baseline_)
     out.print(",pollution_total_baseline,pollution_integral_baseline");
+  const bool contended = world_.radio().contention() != nullptr;
+  if (contended) out.print(",collisions");
   out.print("\n");
   for (const Sample& s : samples_) {
     out.print("{},{},{},{},{},{},{},{},{},{},{}", s.t_s, s.coverage_cost, s.mean_dist_to_centroid,
@@ -282,6 +287,7 @@ void Recorder::write_timeseries(const std::string& path) const {
                 s.neutraliser_used);
     if (pollution && has_baseline_)
       out.print(",{},{}", s.pollution_total_baseline, s.pollution_integral_baseline);
+    if (contended) out.print(",{}", s.collisions);
     out.print("\n");
   }
   out.close();
@@ -338,8 +344,10 @@ void Recorder::write_nodes(const std::string& path) const {
   const std::size_t types = net::message_type_count();
   for (std::size_t t = 0; t < types; ++t)
     out.print(",tx_{0},rx_{0}", net::name_of(t));
-  out.print("\n");
   net::Radio& radio = world_.radio();
+  const net::ContendedMedium* medium = radio.contention();
+  if (medium) out.print("{}", kContentionNodeColumns);
+  out.print("\n");
   // Rows are formatted with compiled formats into a buffer written in large pieces: a million
   // sensors make a 160 MB file, and a runtime format string parsed 20 times a row was most of
   // the time of writing it.
@@ -370,6 +378,7 @@ void Recorder::write_nodes(const std::string& path) const {
       const auto& c = radio.counters(id, static_cast<net::MessageType>(t));
       fmt::format_to(it, FMT_COMPILE(",{},{}"), c.tx_count, c.rx_count);
     }
+    if (medium) append_contention_node(*medium, id, rows);
     rows.push_back('\n');
     if (rows.size() >= kWriteChunkBytes) {
       out.write(std::string_view(rows.data(), rows.size()));
@@ -455,6 +464,8 @@ nlohmann::json Recorder::summary_metrics() const {
                                              {"rx_bytes", c.rx_bytes}};
   }
   j["messages"] = {{"total", {{"count", count}, {"bytes", bytes}}}, {"by_type", by_type}};
+  if (const net::ContendedMedium* medium = radio.contention())
+    add_contention_summary(*medium, j["messages"]);
 
   // Energy: per node, then totals.
   double tx = 0, rx = 0, idle = 0, max_node = 0, robots_total = 0, sensors_total = 0,

@@ -28,6 +28,7 @@ struct Sample {
   double cell_correctness = 1.0;        ///< share of updates so far with the oracle's neighbour set
   double cell_correctness_heard = 1.0;  ///< the same against the cell of the positions heard
   std::uint64_t updates = 0;
+  std::uint64_t collisions = 0;  ///< receptions lost to overlap so far (levels collision, csma)
   // Diffusion runs (paper §VI-B).
   double pollution_total = 0;     ///< Σ of the sensors' readings (paper Fig. 6)
   double pollution_integral = 0;  ///< ∫u dA by the solver's quadrature

@@ -17,6 +17,15 @@ const std::vector<SweepReportMetric>& sweep_report_metrics() {
   static const std::vector<SweepReportMetric> metrics = {
       {"messages.total.count", "messages sent"},
       {"messages.total.bytes", "bytes sent"},
+      // Radio levels collision and csma only.
+      {"messages.total.delivered", "receptions delivered"},
+      {"messages.total.collided", "receptions lost to overlap"},
+      {"messages.total.channel_lost", "receptions lost to the channel"},
+      {"messages.total.dropped", "frames dropped"},
+      {"messages.total.retries", "retries"},
+      {"messages.total.backoffs", "backoffs"},
+      {"messages.total.latency_mean_s", "delivery latency, mean (s)"},
+      {"messages.total.latency_p99_s", "delivery latency, p99 (s)"},
       {"energy_j.total", "energy, total (J)"},
       {"energy_j.per_node_max", "energy, max per node (J)"},
       {"energy_per_update_j", "energy per update (J)"},

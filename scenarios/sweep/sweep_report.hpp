@@ -1,10 +1,10 @@
 #pragma once
 // report.html of a sweep (docs/sweeps.md): one self-contained page comparing configurations
 // (combinations of the varied values) over seeds — mean and 95 % confidence interval (Student t)
-// of messages, bytes, energy, rounds, cell correctness, coverage, tracking and pollution
-// figures — in a table sortable by clicking a header, and a chart of each metric against each
-// varied parameter, drawn by Chart.js read from Debian's libjs-chart.js and inlined at render
-// time (never committed). Without it the page has the tables and says why.
+// of messages, bytes, what contention did, energy, rounds, cell correctness, coverage, tracking
+// and pollution figures — in a table sortable by clicking a header, and a chart of each metric
+// against each varied parameter, drawn by Chart.js read from Debian's libjs-chart.js and inlined at
+// render time (never committed). Without it the page has the tables and says why.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>

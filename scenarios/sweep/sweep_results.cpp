@@ -82,6 +82,13 @@ namespace {
 const std::vector<std::string> kFixedColumns = {"run_id",     "run_index",   "seed",
                                                 "status",     "error",       "label",
                                                 "parameters", "fingerprint", "finished_at"};
+// The totals of the contended radio levels (collision, csma): metric columns that every
+// database has, so that queries over them work whatever the sweep ran; NULL for other levels.
+const std::vector<std::string> kContentionColumns = {
+    "messages_total_transmissions", "messages_total_delivered", "messages_total_collided",
+    "messages_total_channel_lost",  "messages_total_dropped",   "messages_total_retries",
+    "messages_total_backoffs",      "messages_total_acks",      "messages_total_latency_mean_s",
+    "messages_total_latency_p99_s"};
 
 std::string shortest(double v) {
   char buf[64];
@@ -235,6 +242,8 @@ SweepSession::SweepSession(const SweepDef& sweep, std::vector<RunSpec> runs, Swe
   db_->exec("BEGIN");
   for (const auto& p : sweep_.parameters)
     db_->add_column(sanitize_column("p_" + p));
+  for (const auto& c : kContentionColumns)
+    db_->add_column(c);
   {
     Statement insert(db_->db,
                      "INSERT INTO sweep (started_at, sweep_file, sweep_text, base_file, base_text, "
