@@ -23,7 +23,8 @@ struct EnergyParams {
   double battery_j = 0.0;                      ///< initial battery; 0 means unlimited
   // `states` (CC2420 datasheet figures; idle is its idle mode, the oscillator running).
   double voltage_v = 3.0;
-  double tx_current_a = 0.0174;  ///< at the transmit power level in use (0 dBm)
+  double tx_level_dbm = 0.0;     ///< the transmit power level in use
+  double tx_current_a = 0.0174;  ///< ... and its current
   double rx_current_a = 0.0197;
   double idle_current_a = 0.000426;
   double sleep_current_a = 20e-6;  ///< no protocol puts its radio to sleep yet

@@ -1,5 +1,9 @@
 // The `radio` section: levels, timing, loss, energy, message sizes, propagation and the
 // CSMA-CA knobs (docs/scenario-reference.md, docs/radio-and-energy.md).
+#include <sstream>
+#include <string>
+#include <vector>
+
 #include "scenarios/loader/scenario_parts.hpp"
 
 namespace masnet::scenarios {
@@ -38,6 +42,64 @@ void read_propagation(Section& radio, net::RadioParams& r) {
   } else {
     radio.mark_known("capture_threshold");
   }
+}
+
+std::string shown_number(double x) {
+  std::ostringstream out;
+  out << x;
+  return out.str();
+}
+
+// CC2420's transmit current per output power level (datasheet, 3 V supply): dBm, A.
+const std::vector<Vec2> kCc2420TxCurrents = {{0, 0.0174},   {-1, 0.0165}, {-3, 0.0152},
+                                             {-5, 0.0139},  {-7, 0.0125}, {-10, 0.0112},
+                                             {-15, 0.0099}, {-25, 0.0085}};
+
+void read_energy(Section e, net::RadioParams& r) {
+  net::EnergyParams& p = r.energy;
+  p.model = e.choice<net::EnergyModel>(
+      "model", p.model,
+      {{"first_order", net::EnergyModel::first_order}, {"states", net::EnergyModel::states}});
+  const bool states = p.model == net::EnergyModel::states;
+  auto number = [&](const char* key, double& field, Range range, bool applies, const char* model) {
+    if (applies)
+      field = e.number(key, field, range);
+    else
+      e.reject(key, std::string("'") + key + "' applies to model " + model);
+  };
+  number("electronics", p.electronics_j_per_bit, Range::non_negative(), !states, "first_order");
+  number("free_space", p.free_space_j_per_bit_m2, Range::positive(), !states, "first_order");
+  number("multipath", p.multipath_j_per_bit_m4, Range::positive(), !states, "first_order");
+  number("idle_power", p.idle_power_w, Range::non_negative(), !states, "first_order");
+  number("voltage", p.voltage_v, Range::positive(), states, "states");
+  number("rx_current", p.rx_current_a, Range::non_negative(), states, "states");
+  number("idle_current", p.idle_current_a, Range::non_negative(), states, "states");
+  number("sleep_current", p.sleep_current_a, Range::non_negative(), states, "states");
+  if (states) {
+    // The transmit power in use picks its level: the lowest level at or above it.
+    std::vector<Vec2> levels =
+        e.has("tx_currents") ? e.points("tx_currents", 1) : kCc2420TxCurrents;
+    const double power_dbm = r.propagation.tx_power_dbm;
+    bool found = false;
+    for (const Vec2& level : levels) {
+      if (!(level.y() >= 0)) {
+        e.error_at("tx_currents", "a current must be >= 0 A (got " + shown_number(level.y()) + ")");
+        break;
+      }
+      if (level.x() >= power_dbm && (!found || level.x() < r.energy.tx_level_dbm)) {
+        found = true;
+        p.tx_level_dbm = level.x();
+        p.tx_current_a = level.y();
+      }
+    }
+    if (!found)
+      e.error_at("tx_currents",
+                 "no level reaches radio.propagation.tx_power " + shown_number(power_dbm) + " dBm");
+  } else {
+    e.reject("tx_currents", "'tx_currents' applies to model states");
+  }
+  p.battery_j = e.number("battery", p.battery_j, Range::non_negative());
+  e.finish();
 }
 
 void read_csma(Section c, net::CsmaParams& m) {
@@ -87,16 +149,6 @@ net::RadioParams read_radio(Section s) {
                "'jitter' applies to levels ideal and airtime (under contention, frames take "
                "the time the medium gives them; a sensor's reply jitter is protocol.reply_jitter)");
   r.loss = s.number("loss", r.loss, Range{0.0, 1.0, false, true});
-  Section e = s.section("energy");
-  r.energy.electronics_j_per_bit =
-      e.number("electronics", r.energy.electronics_j_per_bit, Range::non_negative());
-  r.energy.free_space_j_per_bit_m2 =
-      e.number("free_space", r.energy.free_space_j_per_bit_m2, Range::positive());
-  r.energy.multipath_j_per_bit_m4 =
-      e.number("multipath", r.energy.multipath_j_per_bit_m4, Range::positive());
-  r.energy.idle_power_w = e.number("idle_power", r.energy.idle_power_w, Range::non_negative());
-  r.energy.battery_j = e.number("battery", r.energy.battery_j, Range::non_negative());
-  e.finish();
   Section z = s.section("sizes");
   auto size = [&](const char* key, std::uint32_t& field) {
     field = static_cast<std::uint32_t>(z.integer(key, field, 0, 65535));
@@ -110,6 +162,7 @@ net::RadioParams read_radio(Section s) {
   size("counter", r.sizes.counter_bytes);
   z.finish();
   read_propagation(s, r);
+  read_energy(s.section("energy"), r);
   if (r.level == net::RadioLevel::csma)
     read_csma(s.section("csma"), r.csma);
   else

@@ -12,6 +12,7 @@
 #include "protocols/heard_cell.hpp"
 #include "scenarios/output/output_file.hpp"
 #include "scenarios/run/contention_outputs.hpp"
+#include "scenarios/run/energy_outputs.hpp"
 
 namespace masnet::scenarios {
 namespace {
@@ -497,7 +498,8 @@ nlohmann::json Recorder::summary_metrics() const {
                    {"robots_total", robots_total},
                    {"sensors_total", sensors_total},
                    {"per_sensor_max", max_sensor},
-                   {"nodes_dead", dead}};
+                   {"nodes_dead", dead},
+                   {"by_type", energy_by_type(radio)}};
 
   // Protocol statistics over all updates.
   nlohmann::json p;

@@ -135,6 +135,11 @@ const std::vector<Case> kCases = {
     {"log_distance_airtime.yaml",
      {"log_distance_airtime.yaml:4:24: radio.propagation.model: model 'log_distance' needs "
       "radio.level collision or csma"}},
+    {"states_energy_keys.yaml",
+     {"states_energy_keys.yaml:5:40: radio.energy.electronics: 'electronics' applies to model "
+      "first_order",
+      "states_energy_keys.yaml:5:59: radio.energy.tx_currents: no level reaches "
+      "radio.propagation.tx_power 3 dBm"}},
     {"csma_knob_at_collision.yaml",
      {"csma_knob_at_collision.yaml:4:11: radio.jitter: 'jitter' applies to levels ideal and "
       "airtime (under contention, frames take the time the medium gives them; a sensor's reply "

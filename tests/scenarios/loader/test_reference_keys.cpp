@@ -96,7 +96,8 @@ std::set<std::string> loader_keys() {
        "robots={layout: random, count: 3, dynamics: discrete_lloyd}",
        "density_scaling={kind: power, gamma: 2}", "protocol={kind: fixed_radius, radius: 0.2}",
        "beacons={senders: all, period: 0.5, range: 0.1}", "limits={allow_huge: false}"},
-      {"radio={level: csma, propagation: {model: log_distance}, capture_threshold: 3}"},
+      {"radio={level: csma, propagation: {model: log_distance}, capture_threshold: 3, energy: "
+       "{model: states, tx_currents: [[0, 0.0174]]}}"},
       {"field={kind: uniform, value: 2}", "robots={layout: positions, positions: [[0.5, 0.5]]}",
        "density_scaling={kind: saturate, c: 2}", "sensors={layout: grid, alignment: interior}"},
   };
