@@ -261,6 +261,23 @@ class Radio {
   /// reach test need not look the addressee up again.
   bool transmit(NodeId source, NodeId destination, double range, Payload&& payload,
                 double destination_distance = -1.0);
+  // A transmission as its parts see it: the ledger has booked the sender (transmit), reception
+  // finds and books the hearers (hear), delivery hands the frame over (deliver).
+  struct Outgoing {
+    NodeId source, destination;
+    std::size_t source_index, type_index;
+    std::uint32_t bytes;
+    double range, destination_distance;
+    std::uint64_t frame_number;
+  };
+  struct Heard {
+    std::uint64_t hearers = 0, received = 0, lost = 0;
+  };
+  /// Every node in range pays for the frame; the receivers that want its type are gathered in
+  /// scratch_receivers_ (net/radio_reception.cpp).
+  Heard hear(const Outgoing& out);
+  /// Hands `frame` to scratch_receivers_ at `arrival` (net/radio_delivery.cpp).
+  void deliver(sim::Time arrival, Frame&& frame);
   void prepare_index();
   /// Folds the bulk (run-length) bookings into the per-node counters.
   void materialize() const;

@@ -1,0 +1,127 @@
+// Delivery on the uncontended levels (ideal, airtime): frames wait in batches for their arrival
+// time, or per reception with jitter, and are handed to their receivers in id order. See
+// docs/radio-and-energy.md and docs/time-and-ordering.md.
+#include <algorithm>
+#include <cmath>
+
+#include "net/radio.hpp"
+#include "sim/random.hpp"
+#include "sim/free_slots.hpp"
+
+namespace masnet::net {
+namespace {
+constexpr std::uint64_t kJitterPurpose = sim::purpose("radio.jitter");
+}  // namespace
+
+void Radio::deliver(sim::Time arrival, Frame&& frame) {
+  std::vector<NodeId>& receivers = scratch_receivers_;
+  // Delivery order is by node id, whatever the grid's layout.
+  // (On a sensor grid the runs already come in id order: check before sorting.)
+  if (receivers.size() > 1 && !std::is_sorted(receivers.begin(), receivers.end()))
+    std::sort(receivers.begin(), receivers.end());
+
+  if (params_.jitter_s <= 0) {
+    // One event delivers to every receiver in id order: the same order separate events with
+    // consecutive sequence numbers would give, at a fraction of the cost.
+    Batch& batch = batch_for(arrival);
+    const bool one = receivers.size() == 1;
+    const auto first = static_cast<std::uint32_t>(batch.receivers.size());
+    batch.deliveries.push_back(Delivery{std::move(frame), one ? receivers[0] : sim::kNoNode, first,
+                                        one ? 0u : static_cast<std::uint32_t>(receivers.size())});
+    if (!one) batch.receivers.insert(batch.receivers.end(), receivers.begin(), receivers.end());
+    return;
+  }
+  const std::uint32_t index = sim::reuse_or_append(free_jittered_, jittered_);
+  Jittered& j = jittered_[index];
+  j.frame = std::move(frame);
+  j.pending = static_cast<std::uint32_t>(receivers.size());
+  for (NodeId id : receivers) {
+    const double u =
+        sim::keyed_uniform01(seed_, kJitterPurpose, nodes_[sim::index(j.frame.source)].random_key,
+                             nodes_[sim::index(id)].random_key, j.frame.number);
+    simulator_.at(arrival + sim::seconds(u * params_.jitter_s),
+                  [this, index, id] { deliver_jittered(index, id); });
+  }
+}
+
+void Radio::hand_over(const Frame& frame, NodeId receiver) {
+  // Died while the frame was in the air (only batteries kill; skip the lookup otherwise).
+  if (battery_limited() && !nodes_[sim::index(receiver)].alive) {
+    traffic_.mix((std::uint64_t{sim::index(frame.source)} << 32) | sim::index(receiver));
+    traffic_.mix(kUndeliveredMark ^ frame.number);
+    return;
+  }
+  sim::Fingerprint& fp = simulator_.fingerprint();
+  fp.mix((std::uint64_t{sim::index(frame.source)} << 32) | sim::index(receiver));
+  fp.mix((std::uint64_t{static_cast<std::uint8_t>(frame.type)} << 32) | frame.size_bytes);
+  if (listener_) listener_->on_frame(receiver, frame);
+}
+
+Radio::Batch& Radio::batch_for(sim::Time arrival) {
+  if (open_batch_ != 0xFFFFFFFFu && open_batch_time_ == arrival &&
+      simulator_.last_sequence() == open_batch_sequence_)
+    return batches_[open_batch_];
+  const std::uint32_t batch = sim::reuse_or_append(free_batches_, batches_);
+  const sim::EventId event = simulator_.at(arrival, [this, batch] { run_batch(batch); });
+  open_batch_ = batch;
+  open_batch_time_ = arrival;
+  open_batch_sequence_ = event.sequence;
+  return batches_[batch];
+}
+
+void Radio::run_batch(std::uint32_t batch) {
+  if (open_batch_ == batch) open_batch_ = 0xFFFFFFFFu;  // closed: nothing joins it any more
+  // Handlers may open new batches and so move `batches_`' elements, never this batch's buffers:
+  // the pointers below stay valid.
+  const Delivery* const deliveries = batches_[batch].deliveries.data();
+  const NodeId* const receivers = batches_[batch].receivers.data();
+  const std::size_t count = batches_[batch].deliveries.size();
+  for (std::size_t i = 0; i < count; ++i) {
+    // The frames were written a while ago (a reply burst's round trip of other traffic): fetch
+    // the next ones while this one is handled.
+    if (i + kDeliveryLookahead < count) prefetch_delivery(deliveries[i + kDeliveryLookahead]);
+    const Delivery& d = deliveries[i];
+    if (d.only != sim::kNoNode) {
+      hand_over(d.frame, d.only);
+      continue;
+    }
+    // A broadcast's receivers answer at once and their records are far apart on large
+    // networks (each sensor row is a jump): fetch a few receivers ahead.
+    const NodeId* const ids = receivers + d.first;
+    for (std::uint32_t k = 0; k < d.count; ++k) {
+      if (k % 16 == 0 && k + 32 < d.count)
+        __builtin_prefetch(ids + k + 32);  // the ids, two lines ahead
+      if (k + kDeliveryLookahead < d.count) {
+        // What a receiver that answers reads first: its position, hot index and sender state.
+        const std::size_t ahead = sim::index(ids[k + kDeliveryLookahead]);
+        __builtin_prefetch(&positions_[ahead]);
+        __builtin_prefetch(&hot_[ahead]);
+        __builtin_prefetch(&senders_[ahead], 1);
+      }
+      hand_over(d.frame, ids[k]);
+    }
+  }
+  Batch& done = batches_[batch];
+  done.deliveries.clear();
+  done.receivers.clear();
+  // A burst of a whole network (initial reports) should not stay allocated.
+  if (done.deliveries.capacity() > kKeptBatchCapacity)
+    std::vector<Delivery>().swap(done.deliveries);
+  if (done.receivers.capacity() > kKeptBatchCapacity) std::vector<NodeId>().swap(done.receivers);
+  free_batches_.push_back(batch);
+}
+
+void Radio::prefetch_delivery(const Delivery& delivery) {
+  const char* const record = reinterpret_cast<const char*>(&delivery);
+  for (std::size_t offset = 0; offset < sizeof(Delivery); offset += 64)
+    __builtin_prefetch(record + offset);
+  __builtin_prefetch(record + sizeof(Delivery) - 1);
+}
+
+void Radio::deliver_jittered(std::uint32_t index, NodeId id) {
+  Jittered& j = jittered_[index];
+  hand_over(j.frame, id);
+  if (--j.pending == 0) free_jittered_.push_back(index);
+}
+
+}  // namespace masnet::net
