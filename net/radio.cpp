@@ -205,8 +205,9 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
 
   // Reception: who hears the frame; each hearer pays, the receivers that want its type are
   // gathered in scratch_receivers_.
-  const Heard heard = hear(Outgoing{source, destination, source_index, type_index, bytes, range,
-                                    destination_distance, frame_number});
+  const Outgoing out{source, destination, source_index,         type_index,
+                     bytes,  range,       destination_distance, frame_number};
+  const Heard heard = hear(out);
   ++sent.count;
   sent.bytes += bytes;
   totals_[type_index].rx_count += heard.received;
@@ -221,8 +222,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   traffic_.mix((heard.received << 32) ^ heard.lost);
   // Delivery: the receivers get it at its arrival.
   if (scratch_receivers_.empty()) return true;
-  deliver(arrival,
-          Frame{source, destination, type, bytes, range, now, frame_number, std::move(payload)});
+  deliver(arrival, out, now, std::move(payload));
   return true;
 }
 

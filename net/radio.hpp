@@ -276,8 +276,9 @@ class Radio {
   /// Every node in range pays for the frame; the receivers that want its type are gathered in
   /// scratch_receivers_ (net/radio_reception.cpp).
   Heard hear(const Outgoing& out);
-  /// Hands `frame` to scratch_receivers_ at `arrival` (net/radio_delivery.cpp).
-  void deliver(sim::Time arrival, Frame&& frame);
+  /// Hands the frame to scratch_receivers_ at `arrival` (net/radio_delivery.cpp). Its parts,
+  /// not a Frame: it is built in place where it waits (see Batch).
+  void deliver(sim::Time arrival, const Outgoing& out, sim::Time sent_at, Payload&& payload);
   void prepare_index();
   /// Folds the bulk (run-length) bookings into the per-node counters.
   void materialize() const;

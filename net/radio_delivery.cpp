@@ -5,15 +5,16 @@
 #include <cmath>
 
 #include "net/radio.hpp"
-#include "sim/random.hpp"
 #include "sim/free_slots.hpp"
+#include "sim/random.hpp"
 
 namespace masnet::net {
 namespace {
 constexpr std::uint64_t kJitterPurpose = sim::purpose("radio.jitter");
 }  // namespace
 
-void Radio::deliver(sim::Time arrival, Frame&& frame) {
+void Radio::deliver(sim::Time arrival, const Outgoing& out, sim::Time sent_at, Payload&& payload) {
+  const auto type = static_cast<MessageType>(out.type_index);
   std::vector<NodeId>& receivers = scratch_receivers_;
   // Delivery order is by node id, whatever the grid's layout.
   // (On a sensor grid the runs already come in id order: check before sorting.)
@@ -26,19 +27,23 @@ void Radio::deliver(sim::Time arrival, Frame&& frame) {
     Batch& batch = batch_for(arrival);
     const bool one = receivers.size() == 1;
     const auto first = static_cast<std::uint32_t>(batch.receivers.size());
-    batch.deliveries.push_back(Delivery{std::move(frame), one ? receivers[0] : sim::kNoNode, first,
-                                        one ? 0u : static_cast<std::uint32_t>(receivers.size())});
+    batch.deliveries.push_back(
+        Delivery{Frame{out.source, out.destination, type, out.bytes, out.range, sent_at,
+                       out.frame_number, std::move(payload)},
+                 one ? receivers[0] : sim::kNoNode, first,
+                 one ? 0u : static_cast<std::uint32_t>(receivers.size())});
     if (!one) batch.receivers.insert(batch.receivers.end(), receivers.begin(), receivers.end());
     return;
   }
   const std::uint32_t index = sim::reuse_or_append(free_jittered_, jittered_);
   Jittered& j = jittered_[index];
-  j.frame = std::move(frame);
+  j.frame = Frame{out.source,       out.destination,   type, out.bytes, out.range, sent_at,
+                  out.frame_number, std::move(payload)};
   j.pending = static_cast<std::uint32_t>(receivers.size());
   for (NodeId id : receivers) {
     const double u =
-        sim::keyed_uniform01(seed_, kJitterPurpose, nodes_[sim::index(j.frame.source)].random_key,
-                             nodes_[sim::index(id)].random_key, j.frame.number);
+        sim::keyed_uniform01(seed_, kJitterPurpose, nodes_[out.source_index].random_key,
+                             nodes_[sim::index(id)].random_key, out.frame_number);
     simulator_.at(arrival + sim::seconds(u * params_.jitter_s),
                   [this, index, id] { deliver_jittered(index, id); });
   }

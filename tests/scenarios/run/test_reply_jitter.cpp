@@ -16,11 +16,10 @@ using namespace masnet::scenarios;
 namespace {
 
 net::ContentionCounters readings(const std::string& jitter_s) {
-  LoadResult loaded =
-      load_scenario(std::string(MASNET_SOURCE_DIR) + "/scenarios/paper/acoustic_tracking.yaml",
-                    {"duration=0.3", "output.snapshots=[]", "sensors.nx=20", "sensors.ny=20",
-                     "radio.level=csma", "protocol.reply_timeout=0.008",
-                     "protocol.reply_jitter=" + jitter_s});
+  LoadResult loaded = load_scenario(
+      std::string(MASNET_SOURCE_DIR) + "/scenarios/paper/acoustic_tracking.yaml",
+      {"duration=0.3", "output.snapshots=[]", "sensors.nx=20", "sensors.ny=20", "radio.level=csma",
+       "protocol.reply_timeout=0.008", "protocol.reply_jitter=" + jitter_s});
   REQUIRE(loaded.scenario);
   sim::Simulator simulator;
   agents::World world(simulator, loaded.scenario->world);
