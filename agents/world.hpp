@@ -10,6 +10,7 @@
 
 #include "agents/density_field.hpp"
 #include "agents/diffusion_field.hpp"
+#include "agents/faults.hpp"
 #include "agents/robot_motion.hpp"
 #include "net/line_index.hpp"
 #include "net/radio.hpp"
@@ -26,6 +27,7 @@ using sim::NodeId;
 struct SensorDef {
   Vec2 position{0, 0};
   double area = 0.0;  ///< the part of Ω this sensor stands for (world units²)
+  double battery_j = 0.0;  ///< its own battery; 0: the sensors' battery (WorldDef)
 };
 
 /// Periodic BEACON traffic (the demo scenario): every sender broadcasts once per period at a
@@ -65,7 +67,14 @@ struct WorldDef {
   protocols::DensityScaling scaling;
   BeaconDef beacons;
   DispenserDef dispenser;
+  /// Batteries by class, joules; 0: the radio's `energy.battery_j` (0 there too: unlimited).
+  double sensor_battery_j = 0.0, robot_battery_j = 0.0;
+  LocomotionEnergy locomotion;
+  std::vector<FaultDef> faults;
 };
+
+/// Why a node went down.
+enum class DownCause { battery, fault };
 
 /// Hooks for recorders.
 class WorldObserver {
@@ -73,6 +82,11 @@ class WorldObserver {
   virtual ~WorldObserver() = default;
   virtual void on_update(std::size_t /*robot*/, const protocols::UpdateRecord& /*record*/) {}
   virtual void on_battery_empty(NodeId /*node*/) {}
+  /// A node went down (battery or fault) or came back up (a fault's `until`).
+  virtual void on_node_down(NodeId /*node*/, DownCause /*cause*/) {}
+  virtual void on_node_up(NodeId /*node*/) {}
+  /// Scripted fault `fault` (its index in WorldDef::faults) struck (`begins`) or was lifted.
+  virtual void on_fault(std::size_t /*fault*/, bool /*begins*/) {}
 };
 
 class World final : public net::RadioListener,
@@ -133,6 +147,20 @@ class World final : public net::RadioListener,
   double neutraliser_used(std::size_t robot) const { return neutraliser_used_[robot]; }
   std::uint64_t sensor_readings() const { return readings_taken_; }
 
+  // ---- Faults, lifetime, locomotion (docs/faults-and-lifetime.md) -------------------------
+  bool node_alive(NodeId node) const { return radio_.alive(node); }
+  std::size_t alive_robot_count() const { return robots_.size() - dead_robots_; }
+  std::size_t alive_sensor_count() const { return def_.sensors.size() - dead_sensors_; }
+  /// Takes `node` down now: it sends, receives, senses and moves no more (a robot stays where
+  /// it is). Nothing if it is down already.
+  void kill(NodeId node, DownCause cause = DownCause::fault);
+  /// Brings a killed node back now: a robot starts its protocol afresh where it stands. Nothing
+  /// if it is up, or if its battery is empty.
+  void restart(NodeId node);
+  /// Metres a robot has travelled so far, and the locomotion energy that cost (joules).
+  double distance_travelled_m(std::size_t robot) const;
+  double locomotion_energy_j(std::size_t robot) const;
+
   // ---- net::RadioListener, net::MobilePositions --------------------------------------------
   void on_frame(NodeId receiver, const net::Frame& frame) override;
   void on_battery_empty(NodeId node) override;
@@ -178,6 +206,14 @@ class World final : public net::RadioListener,
   std::uint64_t readings_taken_ = 0;
   double uniform_sensor_area_ = 0.0;  // > 0 when every sensor stands for the same area
   WorldObserver* observer_ = nullptr;
+  std::size_t dead_robots_ = 0, dead_sensors_ = 0;
+  net::LinkFaults link_faults_;
+  void schedule_faults();
+  void strike(std::size_t fault);
+  void lift(std::size_t fault);
+  /// The nodes fault `fault` kills, decided when it strikes.
+  std::vector<NodeId> fault_victims(std::size_t fault);
+  std::vector<std::vector<NodeId>> fault_victims_;  // [fault]: who it took down
 };
 
 }  // namespace masnet::agents

@@ -131,4 +131,26 @@ SensorFactory paper_sensors() {
   };
 }
 
+
+std::string protocol_phase(const ProtocolDefinition& definition, net::MessageType type) {
+  switch (type) {
+    case net::MessageType::position:
+    case net::MessageType::report:
+      return "initialisation";
+    case net::MessageType::discover:
+    case net::MessageType::neighbor:
+      return "discovery";
+    case net::MessageType::sense:
+    case net::MessageType::reading:
+      return "sensing";
+    case net::MessageType::beacon:
+      return "beacons";
+    default:
+      break;
+  }
+  for (const auto& [own, phase] : definition.message_phases)
+    if (own == type) return phase;
+  return "other";
+}
+
 }  // namespace masnet::protocols

@@ -64,6 +64,10 @@ struct ProtocolDefinition {
   /// Names of the protocol's own per-update fields (UpdateSummary::extra): extra columns of
   /// updates.csv.
   std::vector<std::string> update_columns;
+  /// The phase each of the protocol's own message types belongs to, for energy by phase
+  /// (docs/outputs.md). Built-in types have theirs (protocol_phase); a type not listed here
+  /// counts under "other".
+  std::vector<std::pair<net::MessageType, std::string>> message_phases;
   RobotFactory make_robot;
   /// Empty: the paper's sensors (paper_sensors()).
   SensorFactory make_sensor;
@@ -94,6 +98,11 @@ ParamSpec reply_timeout_param();
 /// `reply_jitter`: the paper's sensors delay each REPORT and READING by a uniform draw in
 /// [0, J), so that a burst of replies does not start at one instant (docs/radio-and-energy.md).
 ParamSpec reply_jitter_param();
+
+/// The phase of the protocol that frames of `type` serve: POSITION and REPORT "initialisation",
+/// DISCOVER and NEIGHBOR "discovery", SENSE and READING "sensing", BEACON "beacons"; a
+/// protocol's own type as its definition says, else "other".
+std::string protocol_phase(const ProtocolDefinition& definition, net::MessageType type);
 
 inline constexpr std::string_view kDefaultProtocol = "radius_doubling";
 
