@@ -22,8 +22,8 @@ struct FaultDef {
   FaultKind kind = FaultKind::kill;
   // kill: exactly one of ids, fraction, region chooses the nodes.
   FaultNodes nodes = FaultNodes::robots;
-  std::vector<std::uint32_t> ids;  ///< robot or sensor numbers (0-based, by class)
-  std::optional<double> fraction;  ///< this share of the class, chosen by the run's seed
+  std::vector<std::uint32_t> ids;     ///< robot or sensor numbers (0-based, by class)
+  std::optional<double> fraction;     ///< this share of the class, chosen by the run's seed
   std::optional<net::Region> region;  ///< the nodes of the class inside it when the fault strikes
   // partition
   net::LineCut line;
@@ -37,8 +37,8 @@ struct FaultDef {
 /// (m/s), booked from the closed-form motion. Defaults: a small ground robot of about 9 kg
 /// (docs/faults-and-lifetime.md).
 struct LocomotionEnergy {
-  double per_metre_j = 7.4;    ///< J per metre travelled
-  double per_accel_j = 2.25;   ///< J per (m/s² · s)
+  double per_metre_j = 7.4;   ///< J per metre travelled
+  double per_accel_j = 2.25;  ///< J per (m/s² · s)
 };
 
 }  // namespace masnet::agents

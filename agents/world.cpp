@@ -1,5 +1,7 @@
 #include "agents/world.hpp"
 
+#include "agents/robot_agent.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,14 +11,6 @@
 
 namespace masnet::agents {
 namespace {
-
-// Random keys by role and index: stable when nodes of another role (or later ones) are added.
-std::uint64_t robot_key(std::size_t i) {
-  return (std::uint64_t{1} << 32) | i;
-}
-std::uint64_t sensor_key(std::size_t i) {
-  return (std::uint64_t{2} << 32) | i;
-}
 
 std::uint32_t interest_mask(const std::vector<net::MessageType>& types) {
   std::uint32_t mask = 0;
@@ -34,87 +28,6 @@ double diameter(const protocols::ConvexPolygon& polygon) {
 }
 
 }  // namespace
-
-// ---- A robot: body (closed-form motion) + protocol + its host interface ---------------------
-
-class World::RobotAgent final : public protocols::RobotHost {
- public:
-  RobotAgent(World& world, std::size_t index, const Vec2& start)
-      : world_(world),
-        index_(index),
-        segment_(world.def_.motion, 0.0, MotionState{start, Vec2{0, 0}}, start) {
-    // The protocol's own stream: its first draw phases the built-ins' updates.
-    auto random =
-        sim::RandomStream::keyed(world.def_.seed, robot_key(index), sim::purpose("protocol.phase"));
-    const protocols::RobotSetup setup{
-        *this, index, world.protocol_context_, world.def_.protocol.params, random, &world.log_};
-    protocol_ = world.truthful_factory_ ? (*world.truthful_factory_)(setup, world)
-                                        : world.definition_->make_robot(setup);
-  }
-
-  protocols::RobotProtocol& protocol() { return *protocol_; }
-  const protocols::RobotProtocol& protocol() const { return *protocol_; }
-  const MotionSegment& segment() const { return segment_; }
-
-  /// State now; cached per simulated instant (many frames are sent at the same time).
-  MotionState state() const {
-    const sim::Time now = world_.simulator_.now();
-    if (!cache_valid_ || cached_at_ != now) {
-      cached_ = segment_.state_at(sim::to_seconds(now));
-      cached_at_ = now;
-      cache_valid_ = true;
-    }
-    return cached_;
-  }
-
-  // protocols::RobotHost
-  sim::Time now() const override { return world_.simulator_.now(); }
-  NodeId id() const override { return world_.robot_node(index_); }
-  Vec2 position() const override { return state().position; }
-  std::uint32_t broadcast(double range, net::Payload payload) override {
-    const std::uint32_t bytes = net::size_bytes(payload, world_.radio_.params().sizes);
-    return world_.radio_.broadcast(id(), range, std::move(payload)) ? bytes : 0;
-  }
-  std::uint32_t unicast(NodeId to, net::Payload payload) override {
-    const std::uint32_t bytes = net::size_bytes(payload, world_.radio_.params().sizes);
-    return world_.radio_.unicast(id(), to, std::move(payload)) ? bytes : 0;
-  }
-  const net::MessageSizes& message_sizes() const override { return world_.radio_.params().sizes; }
-  protocols::TimerHandle set_timer(sim::Duration delay, std::uint32_t kind) override {
-    return world_.simulator_.after(delay, [this, kind] { protocol_->on_timer(kind); });
-  }
-  void cancel_timer(protocols::TimerHandle timer) override { world_.simulator_.cancel(timer); }
-  void set_target(const Vec2& target) override {
-    // A new centroid starts a new closed-form segment from the current state.
-    const MotionState now_state =
-        world_.def_.motion.jump_to_target ? MotionState{target, Vec2{0, 0}} : state();
-    segment_ = MotionSegment(world_.def_.motion, sim::to_seconds(now()), now_state, target);
-    cache_valid_ = false;
-    world_.radio_.raise_speed_bound(segment_.speed_bound());
-    if (world_.def_.motion.jump_to_target) world_.radio_.mobile_node_jumped();
-  }
-  void update_finished(const protocols::UpdateRecord& record) override {
-    world_.simulator_.fingerprint().mix(sim::bits_of(record.centroid.x()));
-    world_.simulator_.fingerprint().mix(sim::bits_of(record.centroid.y()));
-    if (world_.observer_) world_.observer_->on_update(index_, record);
-  }
-  double sensor_area(NodeId sensor) const override {
-    // Equal areas (every layout but a sensor file with areas): no lookup per reading.
-    if (world_.uniform_sensor_area_ > 0.0) return world_.uniform_sensor_area_;
-    return world_.def_.sensors[sim::index(sensor) - world_.robots_.size()].area;
-  }
-
- private:
-  World& world_;
-  // Next to world_: a position query reads both, and the rest of this object (the protocol's
-  // state) is far from this line.
-  mutable bool cache_valid_ = false;
-  mutable sim::Time cached_at_{};
-  mutable MotionState cached_;
-  std::size_t index_;
-  MotionSegment segment_;
-  std::unique_ptr<protocols::RobotProtocol> protocol_;
-};
 
 // ---- A sensor's host: made on the stack per event; the state lives in arrays ---------------
 
@@ -186,6 +99,15 @@ World::World(sim::Simulator& simulator, const WorldDef& def)
     for (const SensorDef& s : def_.sensors)
       if (s.area != uniform_sensor_area_) uniform_sensor_area_ = 0.0;
   }
+  // Batteries: a sensor's own, else its class's, else the radio's (which the radio has already).
+  for (std::size_t i = 0; i < def_.robots.size(); ++i)
+    if (def_.robot_battery_j > 0) radio_.set_battery(robot_node(i), def_.robot_battery_j);
+  for (std::size_t s = 0; s < def_.sensors.size(); ++s) {
+    const double battery_j =
+        def_.sensors[s].battery_j > 0 ? def_.sensors[s].battery_j : def_.sensor_battery_j;
+    if (battery_j > 0) radio_.set_battery(sensor_node(s), battery_j);
+  }
+  if (!def_.faults.empty()) radio_.enable_failures();
   sensor_read_counts_.assign(def_.sensors.size(), 0);
   if (def_.field.kind == FieldKind::diffusion)
     diffusion_ = std::make_unique<DiffusionField>(def_.field.diffusion);
@@ -200,6 +122,7 @@ void World::start() {
     RobotAgent* agent = robot.get();
     simulator_.after(sim::Duration{0}, [agent] { agent->protocol().start(); });
   }
+  schedule_faults();
   if (diffusion_)  // the PDE is the one thing that advances on a fixed step
     simulator_.after(sim::seconds(def_.field.diffusion.dt_s), [this] { pde_step(); });
   const BeaconDef& b = def_.beacons;
@@ -286,8 +209,8 @@ double World::spray_rate(std::size_t robot) const {
   std::size_t count = 0;
   if (d.readings == SprayReadings::live) {
     const protocols::ConvexPolygon& cell = protocol.cell();
-    sensor_grid_.for_each_within(p, d.spray_radius, [&](NodeId, const Vec2& s, double) {
-      if (!protocols::contains(cell, s)) return;
+    sensor_grid_.for_each_within(p, d.spray_radius, [&](NodeId id, const Vec2& s, double) {
+      if (!protocols::contains(cell, s) || (dead_sensors_ > 0 && !radio_.alive(id))) return;
       sum += diffusion_->value_at(s);
       ++count;
     });
@@ -343,7 +266,8 @@ protocols::RobotCell World::oracle_cell(std::size_t robot, double first_radius) 
   for (;;) {
     found.clear();
     radio_.for_each_mobile_within(p, r, [&](NodeId id) {
-      if (id != robot_node(robot))
+      // A robot that is down covers nothing: the cells are those of the robots up.
+      if (id != robot_node(robot) && (dead_robots_ == 0 || robots_[sim::index(id)]->alive()))
         found.push_back({(robots_[sim::index(id)]->state().position - p).squaredNorm(), id});
     });
     // Nearest first, ties by id: the first few clips shrink the cell and the farther candidates
@@ -379,6 +303,7 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
   std::uint32_t inside = 0;
   const std::size_t first_sensor = robots_.size();
   auto take = [&](NodeId id, const Vec2& s) {
+    if (dead_sensors_ > 0 && !radio_.alive(id)) return;  // a sensor that is down reads nothing
     const std::size_t sensor = sim::index(id) - first_sensor;
     accumulator.add(s, sensor_reading(sensor, s), def_.sensors[sensor].area);
     ++inside;
@@ -434,7 +359,8 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
         row.last = c;
         row.sure = sure;
       });
-  const bool row_wise = def_.sensor_noise_sigma <= 0.0 && uniform_sensor_area_ > 0.0 && !diffusion_;
+  const bool row_wise = def_.sensor_noise_sigma <= 0.0 && uniform_sensor_area_ > 0.0 &&
+                        !diffusion_ && dead_sensors_ == 0;
   const std::optional<double> uniform = field_.uniform_value();
   const std::vector<NodeId>& ids = sensor_lines_.ids();
   for (const PendingRow& row : pending_rows_) {
@@ -496,6 +422,7 @@ void World::sensor_timer(std::size_t sensor, std::uint32_t kind) {
 
 void World::on_battery_empty(NodeId node) {
   if (observer_) observer_->on_battery_empty(node);
+  kill(node, DownCause::battery);
 }
 
 Vec2 World::position(NodeId node) const {

@@ -26,7 +26,7 @@ using sim::NodeId;
 
 struct SensorDef {
   Vec2 position{0, 0};
-  double area = 0.0;  ///< the part of Ω this sensor stands for (world units²)
+  double area = 0.0;       ///< the part of Ω this sensor stands for (world units²)
   double battery_j = 0.0;  ///< its own battery; 0: the sensors' battery (WorldDef)
 };
 
@@ -207,7 +207,6 @@ class World final : public net::RadioListener,
   double uniform_sensor_area_ = 0.0;  // > 0 when every sensor stands for the same area
   WorldObserver* observer_ = nullptr;
   std::size_t dead_robots_ = 0, dead_sensors_ = 0;
-  net::LinkFaults link_faults_;
   void schedule_faults();
   void strike(std::size_t fault);
   void lift(std::size_t fault);

@@ -48,7 +48,7 @@ bool ContendedMedium::send(NodeId source, NodeId destination, double range, Payl
         radio_.seed_, radio_.nodes_[macs_.size() - 1].random_key, kBackoffPurpose);
   }
   const std::size_t source_index = sim::index(source);
-  if (radio_.battery_limited() && !radio_.nodes_[source_index].alive) {
+  if (radio_.guarded() && !radio_.nodes_[source_index].alive) {
     ++radio_.nodes_[source_index].refused_count;
     radio_.mix_refusal(source);
     return false;
@@ -174,7 +174,7 @@ void ContendedMedium::begin_transmission(NodeId node, const Frame& frame, bool i
       tx_energy_j(radio_.params_.energy, bits, frame.range * radio_.params_.meters_per_unit,
                   radio_.crossover_m_);
   Mac& m = mac(node);
-  if (battery && !radio_.afford(node, tx_j)) {
+  if (radio_.guarded() && !radio_.afford(node, tx_j)) {
     if (!is_ack) drop_head(node);
     return;
   }
@@ -217,12 +217,14 @@ void ContendedMedium::begin_transmission(NodeId node, const Frame& frame, bool i
   const double reach = unit_disk ? frame.range : radio_.params_.max_range;
   radio_.nodes_within(tx.origin, reach * (1.0 + 1e-9), node, scratch_);
   const double rx_j = rx_energy_j(radio_.params_.energy, bits);
+  const bool links = radio_.link_faults_.any();
   for (const NodeId hearer : scratch_) {
     const double distance = (radio_.position(hearer) - tx.origin).norm();
     if (distance > reach) continue;
     const double power = received_power_mw(tx, hearer, distance * radio_.params_.meters_per_unit);
     if (!unit_disk && mw_to_dbm(power) < propagation_.sensitivity_dbm) continue;
-    if (battery && !radio_.afford(hearer, rx_j)) continue;
+    if (links && radio_.link_faults_.cut(tx.origin, radio_.position(hearer))) continue;
+    if (radio_.guarded() && !radio_.afford(hearer, rx_j)) continue;
     const std::uint32_t hot = radio_.hot_[sim::index(hearer)];
     radio_.heard_bytes_[hot] += frame.size_bytes;
     radio_.total_heard_bytes_ += frame.size_bytes;
@@ -284,6 +286,8 @@ int ContendedMedium::outcome(const Transmission& tx, const Reception& r) const {
   const std::uint64_t sender_key = radio_.nodes_[sim::index(tx.frame.source)].random_key;
   const std::uint64_t receiver_key = radio_.nodes_[sim::index(r.receiver)].random_key;
   double survive = 1.0 - radio_.params_.loss;
+  if (radio_.link_faults_.any())
+    survive *= 1.0 - radio_.link_faults_.loss(tx.origin, radio_.position(r.receiver));
   if (propagation_.model == PropagationModel::log_distance) {
     // The bits sent while others overlapped see the SINR, the rest the SNR.
     const double bits = 8.0 * tx.frame.size_bytes;

@@ -15,7 +15,7 @@ struct Region {
   enum class Shape { disk, polygon };
   Shape shape = Shape::disk;
   Vec2 center{0, 0};
-  double radius = 0.0;  ///< world units
+  double radius = 0.0;        ///< world units
   std::vector<Vec2> polygon;  ///< vertices in order, either orientation, not closed
 
   bool contains(const Vec2& p) const;

@@ -95,7 +95,7 @@ double Radio::idle_j(NodeId id) const {
   if (e.idle_power_w <= 0) return 0.0;
   const Node& node = nodes_[sim::index(id)];
   const sim::Time until = std::min(simulator_.now(), node.died_at);
-  double idle_s = sim::to_seconds(until - node.added_at);
+  double idle_s = node.earlier_lives_s + sim::to_seconds(until - node.added_at);
   if (e.model == EnergyModel::states) {
     // Idle is what is left of its life after sending and receiving.
     const std::uint32_t hot = hot_[sim::index(id)];
@@ -116,7 +116,7 @@ bool Radio::afford(NodeId id, double energy_j) {
   // Only with a battery: a node that cannot pay for a frame is empty and stops.
   Node& node = nodes_[sim::index(id)];
   if (!node.alive) return false;
-  if (params_.energy.battery_j - consumed_j(id) < energy_j) {
+  if (node.battery_j > 0 && node.battery_j - consumed_j(id) < energy_j) {
     kill(id);
     return false;
   }
@@ -125,9 +125,10 @@ bool Radio::afford(NodeId id, double energy_j) {
 
 void Radio::schedule_depletion(NodeId id) {
   Node& node = nodes_[sim::index(id)];
+  if (node.battery_j <= 0 || !node.alive) return;
   const std::uint32_t hot = hot_[sim::index(id)];
   const double remaining =
-      params_.energy.battery_j - senders_[sim::index(id)].energy_tx_j - idle_j(id) -
+      node.battery_j - senders_[sim::index(id)].energy_tx_j - idle_j(id) -
       (hot == kNoHotIndex
            ? 0.0
            : rx_energy_j(params_.energy, 8.0 * static_cast<double>(heard_bytes_[hot])));
@@ -151,6 +152,36 @@ void Radio::kill(NodeId id) {  // the battery is empty
   if (listener_) listener_->on_battery_empty(id);
 }
 
+void Radio::set_battery(NodeId id, double battery_j) {
+  Node& node = nodes_[sim::index(id)];
+  node.battery_j = battery_j;
+  if (battery_j > 0) any_battery_ = true;
+  if (battery_j > 0 && params_.energy.idle_power_w > 0)
+    schedule_depletion(id);
+  else
+    simulator_.cancel(node.depletion_event);
+}
+
+void Radio::take_down(NodeId id) {
+  Node& node = nodes_[sim::index(id)];
+  if (!node.alive) return;
+  node.alive = false;
+  node.died_at = simulator_.now();
+  simulator_.cancel(node.depletion_event);
+}
+
+bool Radio::bring_up(NodeId id) {
+  Node& node = nodes_[sim::index(id)];
+  if (node.alive) return false;
+  if (node.battery_j > 0 && node.battery_j - consumed_j(id) <= 0) return false;
+  node.earlier_lives_s += sim::to_seconds(node.died_at - node.added_at);
+  node.added_at = simulator_.now();
+  node.died_at = sim::kTimeMax;
+  node.alive = true;
+  schedule_depletion(id);
+  return true;
+}
+
 bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& payload,
                      double destination_distance) {
   if (index_dirty_) prepare_index();
@@ -160,9 +191,9 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   // The ledger: the sender pays for the frame, or is refused (an empty battery).
   const std::size_t source_index = sim::index(source);
   const bool battery = battery_limited();
-  // Only a battery kills a node: without one every node is alive, and its cold record is not
-  // fetched for a frame.
-  if (battery && !nodes_[source_index].alive) {
+  // Only a battery or a fault takes a node down: without either every node is up, and its cold
+  // record is not fetched for a frame.
+  if (guarded() && !nodes_[source_index].alive) {
     ++nodes_[source_index].refused_count;
     mix_refusal(source);
     return false;
@@ -174,7 +205,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   const double bits = 8.0 * bytes;
   const double tx_j =
       tx_energy_j(params_.energy, bits, range * params_.meters_per_unit, crossover_m_);
-  if (battery && !afford(source, tx_j)) {
+  if (guarded() && !afford(source, tx_j)) {
     ++nodes_[source_index].refused_count;
     mix_refusal(source);
     return false;

@@ -21,6 +21,7 @@
 #include "net/csma.hpp"
 #include "net/energy.hpp"
 #include "net/line_index.hpp"
+#include "net/link_faults.hpp"
 #include "net/messages.hpp"
 #include "net/propagation.hpp"
 #include "net/spatial_grid.hpp"
@@ -185,6 +186,20 @@ class Radio {
   }
   bool alive(NodeId node) const { return nodes_[sim::index(node)].alive; }
 
+  // ---- Faults and batteries (docs/faults-and-lifetime.md) ------------------------------------
+  /// Gives `node` a battery of its own (joules; 0: unlimited), in place of `energy.battery_j`.
+  void set_battery(NodeId node, double battery_j);
+  /// Nodes may be taken down and brought up (scripted faults): every send, reception and
+  /// delivery then asks whether its node is up, as batteries make it do.
+  void enable_failures() { failures_ = true; }
+  /// Takes `node` down now (it neither sends nor receives); no battery news.
+  void take_down(NodeId node);
+  /// Brings a node taken down back up now; false (and nothing) if its battery is empty or it
+  /// is up.
+  bool bring_up(NodeId node);
+  /// The partitions and degraded areas in force: the world edits them at the faults' times.
+  LinkFaults& link_faults() { return link_faults_; }
+
   /// What contention did, per message type and per sending node (levels collision and csma;
   /// null otherwise).
   const ContendedMedium* contention() const { return contended_.get(); }
@@ -218,7 +233,9 @@ class Radio {
     std::uint32_t interest = 0xFFFFFFFFu;
     std::uint64_t random_key = 0;
     std::uint64_t lost_count = 0, unreachable_count = 0, refused_count = 0;
-    sim::Time added_at{};  // idle drain runs from here to min(now, died_at)
+    sim::Time added_at{};          // idle drain runs from here to min(now, died_at)
+    double earlier_lives_s = 0.0;  // time up before the last restart
+    double battery_j = 0.0;        // 0: unlimited
     sim::Time died_at = sim::kTimeMax;
     sim::EventId depletion_event;
   };
@@ -310,7 +327,10 @@ class Radio {
   /// Positions of the (few) mobile nodes now, asked once per simulated instant: a burst of
   /// replies sent at one instant scans them many times.
   const std::vector<Vec2>& mobile_positions_now();
-  bool battery_limited() const { return params_.energy.battery_j > 0; }
+  /// Some node has a battery.
+  bool battery_limited() const { return any_battery_; }
+  /// Some node may be down: sends, receptions and deliveries ask.
+  bool guarded() const { return any_battery_ || failures_; }
   double consumed_j(NodeId node) const;
   bool afford(NodeId node, double energy_j);
   /// Idle energy as a function of time, not an accumulator: the value never depends on how
@@ -447,6 +467,8 @@ class Radio {
   std::vector<NodeId> scratch_receivers_;
   sim::Fingerprint traffic_;  // the per-transmission part of traffic_fingerprint()
   std::unique_ptr<ContendedMedium> contended_;  // levels collision and csma
+  bool any_battery_ = false, failures_ = false;
+  LinkFaults link_faults_;
 };
 
 template <class Visit>

@@ -50,8 +50,9 @@ void Radio::deliver(sim::Time arrival, const Outgoing& out, sim::Time sent_at, P
 }
 
 void Radio::hand_over(const Frame& frame, NodeId receiver) {
-  // Died while the frame was in the air (only batteries kill; skip the lookup otherwise).
-  if (battery_limited() && !nodes_[sim::index(receiver)].alive) {
+  // Died while the frame was in the air (only batteries and faults kill; skip the lookup
+  // otherwise).
+  if (guarded() && !nodes_[sim::index(receiver)].alive) {
     traffic_.mix((std::uint64_t{sim::index(frame.source)} << 32) | sim::index(receiver));
     traffic_.mix(kUndeliveredMark ^ frame.number);
     return;

@@ -117,6 +117,9 @@ Radio::Heard Radio::hear(const Outgoing& out) {
   const double range = out.range, destination_distance = out.destination_distance;
   const std::uint64_t frame_number = out.frame_number;
   const bool battery = battery_limited();
+  const bool guarded_nodes = guarded();
+  // Partitions and degraded areas in force: each reception is asked about (rare: faults only).
+  const bool links = link_faults_.any();
   const auto type = static_cast<MessageType>(type_index);
   const double bits = 8.0 * bytes;
   // Who hears the frame, decided by positions now. Every node in range pays E_rx for it,
@@ -134,15 +137,20 @@ Radio::Heard Radio::hear(const Outgoing& out) {
   std::uint64_t received = 0, lost = 0;
   const bool drains = battery && params_.energy.idle_power_w > 0;
   const std::uint32_t* const interest = interest_.data();
+  const Vec2 center = position(source);
   auto receive = [&](NodeId id, std::uint32_t hot) {
-    if (battery && !afford(id, rx_j)) return;
+    if (links && link_faults_.cut(center, position(id))) return;
+    if (guarded_nodes && !afford(id, rx_j)) return;
     heard[hot] += bytes;
     ++hearers;
     if (drains) schedule_depletion(id);  // the idle drain now ends sooner
-    if (params_.loss > 0) {
+    const double loss =
+        links ? 1.0 - (1.0 - params_.loss) * (1.0 - link_faults_.loss(center, position(id)))
+              : params_.loss;
+    if (loss > 0) {
       Node& node = nodes_[sim::index(id)];
       if (sim::keyed_uniform01(seed_, kLossPurpose, nodes_[source_index].random_key,
-                               node.random_key, frame_number) < params_.loss) {
+                               node.random_key, frame_number) < loss) {
         ++node.lost_count;
         ++lost;
         return;
@@ -154,14 +162,14 @@ Radio::Heard Radio::hear(const Outgoing& out) {
     if (interest[hot] & type_bit) receivers.push_back(id);
   };
   auto overhear = [&](NodeId id, std::uint32_t hot) {
-    if (battery && !afford(id, rx_j)) return;
+    if (links && link_faults_.cut(center, position(id))) return;
+    if (guarded_nodes && !afford(id, rx_j)) return;
     heard[hot] += bytes;
     ++overheard[hot];
     ++hearers;
     if (drains) schedule_depletion(id);
   };
 
-  const Vec2 center = position(source);
   // Hot indices compared instead of ids: the inner loops load nothing but coordinates.
   const std::uint32_t source_hot = hot_[source_index];
   const std::uint32_t destination_hot =
@@ -170,7 +178,7 @@ Radio::Heard Radio::hear(const Outgoing& out) {
   const bool is_broadcast = destination == sim::kNoNode;
   // Booked in bulk whenever no reception can fail (no battery, no loss): energy and counters
   // go in as runs; the nodes that want the frame (interest) are collected as receivers.
-  const bool bulk = use_lines_ && !battery && (!is_broadcast || params_.loss <= 0);
+  const bool bulk = use_lines_ && !guarded_nodes && !links && (!is_broadcast || params_.loss <= 0);
   const bool collect = is_broadcast && (static_interest_ & type_bit) != 0;
   const bool everyone_wants = (static_interest_common_ & type_bit) != 0;  // no per-node check
   if (use_lines_) {

@@ -27,6 +27,7 @@ Radio::Radio(sim::Simulator& simulator, const RadioParams& params, std::uint64_t
   latency_ = sim::seconds(params_.latency_s);
   for (std::uint32_t bytes = 0; bytes < kAirtimeTableBytes; ++bytes)
     airtime_table_[bytes] = compute_airtime(bytes);
+  any_battery_ = params_.energy.battery_j > 0;
   if (params_.contended()) contended_ = std::make_unique<ContendedMedium>(*this);
 }
 
@@ -43,6 +44,7 @@ Radio::~Radio() {
 void Radio::add_node(NodeId id, Node node, bool mobile, const Vec2& position) {
   MASNET_ASSERT(sim::index(id) == nodes_.size(), "node ids are dense from 0");
   node.added_at = simulator_.now();
+  node.battery_j = params_.energy.battery_j;
   nodes_.push_back(node);
   senders_.emplace_back();
   hot_.push_back(kNoHotIndex);  // given by the next prepare_index()

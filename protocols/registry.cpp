@@ -131,7 +131,6 @@ SensorFactory paper_sensors() {
   };
 }
 
-
 std::string protocol_phase(const ProtocolDefinition& definition, net::MessageType type) {
   switch (type) {
     case net::MessageType::position:
