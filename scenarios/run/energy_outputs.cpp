@@ -25,8 +25,9 @@ nlohmann::json energy_by_phase(const net::Radio& radio,
     const double tx = radio.type_tx_energy_j(type), rx = radio.type_rx_energy_j(type);
     if (tx == 0 && rx == 0) continue;
     nlohmann::json& phase = by_phase[protocols::protocol_phase(definition, type)];
-    phase["radio_tx"] = phase.value("radio_tx", 0.0) + tx;
-    phase["radio_rx"] = phase.value("radio_rx", 0.0) + rx;
+    if (phase.is_null()) phase = {{"radio_tx", 0.0}, {"radio_rx", 0.0}};
+    phase["radio_tx"] = phase["radio_tx"].get<double>() + tx;
+    phase["radio_rx"] = phase["radio_rx"].get<double>() + rx;
   }
   return by_phase;
 }
