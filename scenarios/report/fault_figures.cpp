@@ -26,6 +26,7 @@ constexpr Rgb kStrike{0.84, 0.15, 0.16};
 constexpr Rgb kLift{0.17, 0.63, 0.17};
 constexpr Rgb kRobot{0.08, 0.36, 0.90};
 constexpr Rgb kWhite{1, 1, 1};
+constexpr std::size_t kMaxCrosses = 2000;
 
 // The scripted faults' strike and lift times (NaN: never lifted), from summary.json's `recovery`.
 std::vector<std::pair<double, double>> fault_times(const RunData& run) {
@@ -109,6 +110,14 @@ void draw_energy_map(cairo_t* cr, const RunData& run) {
   }
   plot::ColourScale colours;
   const auto [lo, hi] = plot::data_range({&energy}, 0.0);
+  // Many sensors down: blank cells rather than a cross each (a million crosses is no figure).
+  const bool blank_dead = dead_sensors.size() > kMaxCrosses;
+  if (blank_dead)
+    for (std::size_t i = 0, k = 0; i < nodes.rows(); ++i)
+      if (nodes.text("role")[i] != "robot") {
+        if (nodes.column("alive")[i] == 0) energy[k] = kNaN;
+        ++k;
+      }
   colours.lo = std::min(lo, 0.0);
   colours.hi = hi > colours.lo ? hi : colours.lo + 1.0;
   Axes axes = map_axes(cr, {70, 50, 470, 470}, run);
@@ -119,8 +128,12 @@ void draw_energy_map(cairo_t* cr, const RunData& run) {
   axes.decorate("x (world units)", "y (world units)");
   axes.polygon(run.domain, Style{kBlack, 1.2});
   axes.clip();
-  axes.markers(dead_sensors, Marker::cross, 6, kBlack, kBlack,
-               fmt::format("sensor down at the end ({})", dead_sensors.size()));
+  if (blank_dead)
+    axes.add_legend_entry(fmt::format("sensor down at the end ({}): blank", dead_sensors.size()),
+                          Style{kGrey, 1.0});
+  else
+    axes.markers(dead_sensors, Marker::cross, 6, kBlack, kBlack,
+                 fmt::format("sensor down at the end ({})", dead_sensors.size()));
   axes.markers(robots, Marker::dot, 10, kRobot, kWhite, fmt::format("robot ({})", robots.size()));
   axes.markers(dead_robots, Marker::dot, 10, kGrey, kWhite, "");
   axes.markers(dead_robots, Marker::cross, 12, kStrike, kStrike,

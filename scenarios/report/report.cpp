@@ -465,8 +465,8 @@ fs::path write_report(const RunData& run, const std::vector<FigureInfo>& figures
     << "</section>\n";
 
   // Results: every other section of summary.json (coverage, tracking, pollution, …).
-  static const std::set<std::string> kShown{"scenario", "messages", "energy_j", "protocol",
-                                            "lifetime", "twin"};
+  static const std::set<std::string> kShown{"scenario", "messages", "energy_j",
+                                            "protocol", "lifetime", "twin"};
   h << "<section id=\"results\">\n<h2>Results</h2>\n";
   for (const auto& [key, value] : s.items()) {
     if (kShown.count(key) || !value.is_object()) continue;

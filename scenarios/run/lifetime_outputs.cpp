@@ -57,8 +57,7 @@ nlohmann::json recovery_summary(const std::vector<agents::FaultDef>& faults,
   for (const Sample& s : samples) {
     t.push_back(s.t_s);
     // NaN (no robot alive) is never recovered.
-    coverage_ok.push_back(s.coverage_cost <=
-                          (1.0 + kCoverageRecoveryShare) * s.coverage_cost_twin);
+    coverage_ok.push_back(s.coverage_cost <= (1.0 + kCoverageRecoveryShare) * s.coverage_cost_twin);
     correctness_ok.push_back(s.cell_correctness_recent > kCorrectnessRecovered);
   }
   const double last_s = t.empty() ? -1.0 : t.back();

@@ -196,7 +196,11 @@ TEST_CASE("lifetime of a three-node layout with small batteries equals the hand 
   const auto& robots_up = ts.column("alive_robots");
   for (std::size_t k = 0; k < t.size(); ++k) {
     INFO("t = " << t[k]);
-    const double expected_sensors = t[k] < 1.0 ? 2 : t[k] < 2.0 ? 1 : t[k] < 2.5 ? 0 : t[k] < 3.5 ? 1 : 0;
+    const double expected_sensors = t[k] < 1.0   ? 2
+                                    : t[k] < 2.0 ? 1
+                                    : t[k] < 2.5 ? 0
+                                    : t[k] < 3.5 ? 1
+                                                 : 0;
     CHECK(sensors_up[k] == expected_sensors);
     CHECK(robots_up[k] == (t[k] < 4.0 ? 1 : 0));
     // No robot up: no coverage cost (NaN), in the run and in its twin (same battery).
