@@ -93,7 +93,7 @@ fs::path faulty_copy(const ShortRun& run) {
     std::string row;
     for (std::size_t i = 0; i < c.size(); ++i)
       row += (i ? "," : "") + c[i];
-    text += row + (robot ? fmt::format(",{},{}", 10.0 * k, 2.0 * k) : std::string(",,")) + "\n";
+    text += row + (robot ? fmt::format(",{},{}", 10 * k, 2 * k) : std::string(",,")) + "\n";
   }
   write(dir / "nodes.csv", text);
 

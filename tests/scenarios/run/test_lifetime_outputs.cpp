@@ -216,7 +216,7 @@ TEST_CASE("lifetime of a three-node layout with small batteries equals the hand 
   fs::remove_all(dir.parent_path());
 }
 
-TEST_CASE("a run with faults has a fault-free twin, lifetime and recovery; one without has none",
+TEST_CASE("a run with faults has a fault-free twin, lifetime and recovery, one without has none",
           "[scenarios]") {
   Run plain(acoustic(0)), faulty(acoustic(0.5));
   plain.execute();
