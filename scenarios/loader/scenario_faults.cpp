@@ -80,8 +80,9 @@ net::Region read_region(Section s) {
 
 // The nodes a kill takes: exactly one of `ids`, `fraction` and `region`.
 void read_kill(Section& f, FaultDef& fault, const NodeCounts& counts) {
-  fault.nodes = f.choice<FaultNodes>("kill", FaultNodes::robots,
-                                     {{"robots", FaultNodes::robots}, {"sensors", FaultNodes::sensors}});
+  fault.nodes =
+      f.choice<FaultNodes>("kill", FaultNodes::robots,
+                           {{"robots", FaultNodes::robots}, {"sensors", FaultNodes::sensors}});
   const bool robots = fault.nodes == FaultNodes::robots;
   const std::string what = robots ? "robot" : "sensor";
   const std::vector<const char*> choosers = {"ids", "fraction", "region"};
@@ -94,7 +95,8 @@ void read_kill(Section& f, FaultDef& fault, const NodeCounts& counts) {
       else
         chosen = key;
     }
-  if (!chosen) f.error_at("kill", "a kill needs 'ids', 'fraction' or 'region' (which nodes it takes)");
+  if (!chosen)
+    f.error_at("kill", "a kill needs 'ids', 'fraction' or 'region' (which nodes it takes)");
   const std::string_view pick = chosen ? chosen : "";
   if (pick == "ids") {
     const std::optional<std::size_t> count = robots ? counts.robots : counts.sensors;
@@ -224,7 +226,7 @@ agents::LocomotionEnergy read_locomotion(Section s) {
 
 std::vector<FaultDef> read_faults(Section& top, double duration_s, const NodeCounts& counts) {
   std::vector<FaultDef> faults;
-  // No list: nothing in the resolved scenario, so a fault-free run's key stays as it was.
+  // No list: nothing in the resolved scenario (like `limits`).
   if (!top.has("faults")) {
     top.mark_known("faults");
     return faults;

@@ -219,9 +219,9 @@ TEST_CASE("every bad fault is refused with its exact located message", "[scenari
         Lines{at + "24: faults[0].partition.line: a partition needs 'line: [[x1, y1], [x2, y2]]'"});
   CHECK(fault_problems("{at: 1, partition: {line: [[0, 0], [1, 1]]}, ids: [1]}") ==
         Lines{at + "55: faults[0].ids: 'ids' applies to a kill"});
-  CHECK(fault_problems(
-            "{at: 1, degrade: {loss: 1.5, region: {center: [0.5, 0.5], radius: 0.2}}}") ==
-        Lines{at + "29: faults[0].degrade.loss: must be in [0, 1] (got 1.5)"});
+  CHECK(
+      fault_problems("{at: 1, degrade: {loss: 1.5, region: {center: [0.5, 0.5], radius: 0.2}}}") ==
+      Lines{at + "29: faults[0].degrade.loss: must be in [0, 1] (got 1.5)"});
   CHECK(fault_problems("{at: 1, degrade: {loss: 0.5}, region: {center: [0.5, 0.5], radius: 1}}") ==
         Lines{at + "22: faults[0].degrade.region: a degraded area needs 'region' (a disk or a "
                    "polygon)",
@@ -237,12 +237,10 @@ TEST_CASE("every bad fault is refused with its exact located message", "[scenari
         Lines{"inline.yaml:3:5: faults[0]: expected a mapping of keys, got '3'"});
 }
 
-TEST_CASE("fault ids are checked against the class's count only when it is known",
-          "[scenarios]") {
+TEST_CASE("fault ids are checked against the class's count only when it is known", "[scenarios]") {
   CHECK(problems("duration: 5\nsensors: {layout: random, count: 0}\nfaults:\n"
                  "  - {at: 1, kill: sensors, ids: [0]}\n") ==
-        std::vector<std::string>{
-            "inline.yaml:4:33: faults[0].ids: the scenario has no sensors"});
+        std::vector<std::string>{"inline.yaml:4:33: faults[0].ids: the scenario has no sensors"});
   // A bad robots section reports itself, not a cascade of ids against a count it never had.
   CHECK(problems("duration: 5\nrobots: {layout: random, count: 0}\nfaults:\n"
                  "  - {at: 1, kill: robots, ids: [3]}\n") ==
@@ -256,7 +254,7 @@ TEST_CASE("fault ids are checked against the class's count only when it is known
 TEST_CASE("a fault is in the resolved scenario, so it changes the run key", "[scenarios]") {
   const std::string base = "duration: 5\n";
   const ScenarioDef none = loaded(base);
-  // No list: no key, and the resolved scenario is the one of a file from before faults existed.
+  // No list: no key in the resolved scenario.
   CHECK_FALSE(none.resolved.contains("faults"));
   CHECK(none.world.faults.empty());
   const ScenarioDef one = loaded(base + "faults:\n  - {at: 1, kill: robots, ids: [1]}\n");
@@ -268,11 +266,11 @@ TEST_CASE("a fault is in the resolved scenario, so it changes the run key", "[sc
   CHECK(one.resolved.dump() == same.resolved.dump());
   CHECK(one.resolved["faults"] ==
         nlohmann::json::parse(R"([{"at": 1.0, "kill": "robots", "ids": [1]}])"));
-  const ScenarioDef mixed = loaded(
-      base +
-      "faults:\n"
-      "  - {at: 1, until: 2, partition: {line: [[0.5, 0], [0.5, 1]]}}\n"
-      "  - {at: 0.5, degrade: {loss: 0.3, region: {polygon: [[0, 0], [1, 0], [0, 1]]}}}\n");
+  const ScenarioDef mixed =
+      loaded(base +
+             "faults:\n"
+             "  - {at: 1, until: 2, partition: {line: [[0.5, 0], [0.5, 1]]}}\n"
+             "  - {at: 0.5, degrade: {loss: 0.3, region: {polygon: [[0, 0], [1, 0], [0, 1]]}}}\n");
   CHECK(mixed.resolved["faults"] == nlohmann::json::parse(R"([
       {"at": 1.0, "until": 2.0, "partition": {"line": [[0.5, 0.0], [0.5, 1.0]]}},
       {"at": 0.5, "degrade": {"loss": 0.3, "region": {"polygon": [[0, 0], [1, 0], [0, 1]]}}}])"));
@@ -357,8 +355,9 @@ TEST_CASE("a sensor file's header may name a battery column, in any place", "[sc
   CHECK(def.world.sensors[0].area == 0.1);
   CHECK(def.world.sensors[0].battery_j == 0.0);
 
-  write("x,y,area,battery\n0.25,0.25,0.1,-1\n0.5,0.5,0.1,nan\n0.5,0.5,0.1\n0.5,0.5,0.1,1,2\n"
-        "0.5,0.5,0.1,many\n");
+  write(
+      "x,y,area,battery\n0.25,0.25,0.1,-1\n0.5,0.5,0.1,nan\n0.5,0.5,0.1\n0.5,0.5,0.1,1,2\n"
+      "0.5,0.5,0.1,many\n");
   CHECK(texts(load_scenario_text(text, scenario, {}).diagnostics) ==
         std::vector<std::string>{
             csv + ":2:15: the battery (column 4) must be in [0, 1e+12] J (got '-1')",
