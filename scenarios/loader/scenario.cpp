@@ -381,8 +381,11 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
   def.world.domain = read_domain(top.section("domain"));
   const std::string base_dir = std::filesystem::path(file_name).parent_path().string();
   SensorLayout layout;
+  NodeCounts counts;
+  std::size_t errors_before = reader.diagnostics().size();
   def.world.sensors = read_sensors(top.section("sensors"), def.world.domain, def.seed, base_dir,
-                                   reader, layout, def.world.sensor_noise_sigma, caps);
+                                   reader, layout, def.world, caps);
+  if (reader.diagnostics().size() == errors_before) counts.sensors = layout.count;
   def.sensor_count = layout.count;
   def.sensor_layout = layout.kind;
   LimitSections at{top.peek("field"),    top.peek("density_scaling"), top.peek("robots"),
@@ -396,17 +399,18 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
         def.world.field.min_distance;
   }
   def.world.scaling = read_scaling(top.section("density_scaling"));
+  errors_before = reader.diagnostics().size();
   def.world.robots =
-      read_robots(top.section("robots"), def.world.domain, def.seed, def.world.motion, caps);
+      read_robots(top.section("robots"), def.world.domain, def.seed, def.world, caps);
+  if (reader.diagnostics().size() == errors_before) counts.robots = def.world.robots.size();
   def.world.radio = read_radio(top.section("radio"));
   def.world.protocol = read_protocol(top.section("protocol"), def.world.radio.level);
   def.world.beacons = read_beacons(top.section("beacons"));
   read_control(top.section("control"), def.world.field.kind == FieldKind::diffusion,
                def.world.dispenser, def);
   def.output = read_output(top.section("output"), duration_ok ? def.duration_s : 0.0);
-  for (const char* later : {"groups", "faults"})
-    top.reject(later,
-               std::string("section '") + later + "' is not supported by this version of masnet");
+  def.world.faults = read_faults(top, duration_ok ? def.duration_s : 0.0, counts);
+  top.reject("groups", "section 'groups' is not supported by this version of masnet");
   top.finish();
   // What the numbers imply (work, densities) only means something once they are all valid.
   if (reader.ok()) check_limits(def, layout.count, caps, at);
