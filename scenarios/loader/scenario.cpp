@@ -286,7 +286,7 @@ agents::BeaconDef read_beacons(Section s) {
   return b;
 }
 
-OutputDef read_output(Section s, double duration_s) {
+OutputDef read_output(Section s, double duration_s, bool acoustic) {
   OutputDef o;
   o.sample_period_s = s.number("sample_period", o.sample_period_s, Range::time());
   o.trajectory_period_s = s.number("trajectory_period", o.trajectory_period_s, Range::time());
@@ -294,6 +294,12 @@ OutputDef read_output(Section s, double duration_s) {
   o.updates = s.boolean("updates", o.updates);
   o.figures = s.boolean("figures", o.figures);
   o.report = s.boolean("report", o.report);
+  if (!acoustic)
+    s.reject("tracking_radius", "'tracking_radius' applies to field kind acoustic");
+  else if (s.has("tracking_radius"))
+    o.tracking_radius = s.number("tracking_radius", 0.0, Range::positive());
+  else  // derived from the domain and the robots; left out of the resolved scenario so that
+    s.mark_known("tracking_radius");  // run keys stay as they were before the key existed
   s.finish();
   return o;
 }
@@ -408,7 +414,8 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
   def.world.beacons = read_beacons(top.section("beacons"));
   read_control(top.section("control"), def.world.field.kind == FieldKind::diffusion,
                def.world.dispenser, def);
-  def.output = read_output(top.section("output"), duration_ok ? def.duration_s : 0.0);
+  def.output = read_output(top.section("output"), duration_ok ? def.duration_s : 0.0,
+                           def.world.field.kind == FieldKind::acoustic);
   def.world.faults = read_faults(top, duration_ok ? def.duration_s : 0.0, counts);
   top.reject("groups", "section 'groups' is not supported by this version of masnet");
   top.finish();
