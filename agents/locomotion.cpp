@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <boost/math/quadrature/gauss.hpp>
 
 namespace masnet::agents {
 namespace {
@@ -21,16 +21,30 @@ TravelIntegrals travel_between(const MotionSegment& segment, const MotionParams&
   if (!(t1_s > t0_s)) return out;
   const Vec2 target = segment.target();
   if (params.max_speed <= 0.0) {
-    // Smooth but for kinks where a speed component changes sign: the adaptive rule splits
-    // there; short segments (most of them) pass on the first 15 points.
-    using Rule = boost::math::quadrature::gauss_kronrod<double, 15>;
-    constexpr unsigned kMaxDepth = 10;
-    constexpr double kTolerance = 1e-9;
-    out.distance = Rule::integrate([&](double t) { return segment.state_at(t).velocity.norm(); },
-                                   t0_s, t1_s, kMaxDepth, kTolerance);
-    out.accel = Rule::integrate(
-        [&](double t) { return acceleration(params, segment.state_at(t), target).norm(); }, t0_s,
-        t1_s, kMaxDepth, kTolerance);
+    // Gauss–Legendre (7 points, Boost's nodes) on pieces of at most kPieceS, both integrands
+    // from one evaluation of the closed form: a booking per update must stay cheap. |v| and |a|
+    // have kinks where they change sign; a piece that holds one is off by its local second
+    // order, a few parts in 10⁵ of the whole (docs/faults-and-lifetime.md).
+    using Rule = boost::math::quadrature::gauss<double, 7>;
+    constexpr double kPieceS = 0.05;
+    const auto pieces = static_cast<std::size_t>(std::ceil((t1_s - t0_s) / kPieceS));
+    const double width = (t1_s - t0_s) / static_cast<double>(pieces);
+    const auto& x = Rule::abscissa();  // the non-negative half; x[0] = 0
+    const auto& w = Rule::weights();
+    auto add = [&](double t, double weight, double half) {
+      const MotionState s = segment.state_at(t);
+      out.distance += weight * half * s.velocity.norm();
+      out.accel += weight * half * acceleration(params, s, target).norm();
+    };
+    for (std::size_t p = 0; p < pieces; ++p) {
+      const double a = t0_s + static_cast<double>(p) * width;
+      const double half = 0.5 * width, mid = a + half;
+      add(mid, w[0], half);
+      for (std::size_t i = 1; i < x.size(); ++i) {
+        add(mid - half * x[i], w[i], half);
+        add(mid + half * x[i], w[i], half);
+      }
+    }
     return out;
   }
   // Substepped motion: the trapezoid rule on the substep grid, walked forward (the segment

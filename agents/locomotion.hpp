@@ -15,8 +15,8 @@ struct TravelIntegrals {
   }
 };
 
-/// Over [t0_s, t1_s] of `segment` (t0_s at or after its start): adaptive Gauss–Kronrod on the
-/// closed form, or the substep grid when the speed is limited (then the law's acceleration).
+/// Over [t0_s, t1_s] of `segment` (t0_s at or after its start): Gauss–Legendre on the closed
+/// form, or the trapezoid rule on the substep grid when the speed is limited.
 TravelIntegrals travel_between(const MotionSegment& segment, const MotionParams& params,
                                double t0_s, double t1_s);
 

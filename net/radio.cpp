@@ -238,7 +238,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   // gathered in scratch_receivers_.
   const Outgoing out{source, destination, source_index,         type_index,
                      bytes,  range,       destination_distance, frame_number};
-  const Heard heard = hear(out);
+  const Heard heard = link_faults_.any() ? hear<true>(out) : hear<false>(out);
   ++sent.count;
   sent.bytes += bytes;
   totals_[type_index].rx_count += heard.received;

@@ -292,7 +292,14 @@ class Radio {
   };
   /// Every node in range pays for the frame; the receivers that want its type are gathered in
   /// scratch_receivers_ (net/radio_reception.cpp).
+  /// `kLinkFaults`: partitions or degraded areas are in force (a separate instantiation, so that
+  /// runs without them never test for them per hearer).
+  template <bool kLinkFaults>
   Heard hear(const Outgoing& out);
+  /// A partition stands between `from` and `to` / the loss there with degraded areas (out of
+  /// line: only runs with link faults in force ask).
+  [[gnu::noinline]] bool link_cut(const Vec2& from, NodeId to) const;
+  [[gnu::noinline]] double link_loss(const Vec2& from, NodeId to) const;
   /// Hands the frame to scratch_receivers_ at `arrival` (net/radio_delivery.cpp). Its parts,
   /// not a Frame: it is built in place where it waits (see Batch).
   void deliver(sim::Time arrival, const Outgoing& out, sim::Time sent_at, Payload&& payload);

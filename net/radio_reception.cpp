@@ -110,6 +110,15 @@ void Radio::drain_overhearing() const {
   }
 }
 
+bool Radio::link_cut(const Vec2& from, NodeId to) const {
+  return link_faults_.cut(from, position(to));
+}
+
+double Radio::link_loss(const Vec2& from, NodeId to) const {
+  return 1.0 - (1.0 - params_.loss) * (1.0 - link_faults_.loss(from, position(to)));
+}
+
+template <bool kLinkFaults>
 Radio::Heard Radio::hear(const Outgoing& out) {
   const NodeId source = out.source, destination = out.destination;
   const std::size_t source_index = out.source_index, type_index = out.type_index;
@@ -119,7 +128,7 @@ Radio::Heard Radio::hear(const Outgoing& out) {
   const bool battery = battery_limited();
   const bool guarded_nodes = guarded();
   // Partitions and degraded areas in force: each reception is asked about (rare: faults only).
-  const bool links = link_faults_.any();
+  constexpr bool links = kLinkFaults;
   const auto type = static_cast<MessageType>(type_index);
   const double bits = 8.0 * bytes;
   // Who hears the frame, decided by positions now. Every node in range pays E_rx for it,
@@ -138,15 +147,14 @@ Radio::Heard Radio::hear(const Outgoing& out) {
   const bool drains = battery && params_.energy.idle_power_w > 0;
   const std::uint32_t* const interest = interest_.data();
   const Vec2 center = position(source);
-  auto receive = [&](NodeId id, std::uint32_t hot) {
-    if (links && link_faults_.cut(center, position(id))) return;
+  // Inlined: it runs for every receiver of a broadcast; the fault checks stay out of line.
+  auto receive = [&](NodeId id, std::uint32_t hot) __attribute__((always_inline)) {
+    if (links && link_cut(center, id)) return;
     if (guarded_nodes && !afford(id, rx_j)) return;
     heard[hot] += bytes;
     ++hearers;
     if (drains) schedule_depletion(id);  // the idle drain now ends sooner
-    const double loss =
-        links ? 1.0 - (1.0 - params_.loss) * (1.0 - link_faults_.loss(center, position(id)))
-              : params_.loss;
+    const double loss = links ? link_loss(center, id) : params_.loss;
     if (loss > 0) {
       Node& node = nodes_[sim::index(id)];
       if (sim::keyed_uniform01(seed_, kLossPurpose, nodes_[source_index].random_key,
@@ -162,7 +170,7 @@ Radio::Heard Radio::hear(const Outgoing& out) {
     if (interest[hot] & type_bit) receivers.push_back(id);
   };
   auto overhear = [&](NodeId id, std::uint32_t hot) {
-    if (links && link_faults_.cut(center, position(id))) return;
+    if (links && link_cut(center, id)) return;
     if (guarded_nodes && !afford(id, rx_j)) return;
     heard[hot] += bytes;
     ++overheard[hot];
@@ -289,5 +297,8 @@ Radio::Heard Radio::hear(const Outgoing& out) {
   }
   return Heard{hearers, received, lost};
 }
+
+template Radio::Heard Radio::hear<false>(const Outgoing& out);
+template Radio::Heard Radio::hear<true>(const Outgoing& out);
 
 }  // namespace masnet::net

@@ -410,6 +410,40 @@ std::vector<double> Section::numbers(std::string_view key, Range range) {
   return result;
 }
 
+std::vector<std::int64_t> Section::distinct_integers(std::string_view key, std::int64_t lo,
+                                                     std::int64_t hi, const std::string& what) {
+  note(key);
+  const YAML::Node value = child(key);
+  std::vector<std::int64_t> result;
+  if (value.IsDefined()) {
+    if (!value.IsSequence()) {
+      error_at(key, "expected a list of whole numbers, got " + shown(value));
+    } else {
+      std::map<std::int64_t, std::size_t> first_item;  // each number's first place in the list
+      for (std::size_t i = 0; i < value.size(); ++i) {
+        long long x = 0;
+        const std::string item = child_path(key) + "[" + std::to_string(i) + "]";
+        const std::string at = reader_->location(value[i], child_path(key));
+        if (!value[i].IsScalar() || !YAML::convert<long long>::decode(value[i], x)) {
+          reader_->error(at, item + ": expected a whole number, got " + shown(value[i]));
+        } else if (x < lo || x > hi) {
+          reader_->error(at, item + ": there is no " + what + " " + std::to_string(x) + " (" +
+                                 what + "s are numbered " + std::to_string(lo) + " to " +
+                                 std::to_string(hi) + ")");
+        } else if (const auto [first, inserted] = first_item.emplace(x, i); !inserted) {
+          reader_->error(at, item + ": " + what + " " + std::to_string(x) +
+                                 " is listed twice (first as item " +
+                                 std::to_string(first->second) + ")");
+        } else {
+          result.push_back(x);
+        }
+      }
+    }
+  }
+  resolve(key, result);
+  return result;
+}
+
 Section Section::section(std::string_view key) {
   note(key);
   YAML::Node value = child(key);

@@ -145,6 +145,10 @@ class Section {
   /// A list of [x, y] points; `min_count` checked.
   std::vector<Vec2> points(std::string_view key, std::size_t min_count = 0);
   std::vector<double> numbers(std::string_view key, Range range = {});
+  /// A list of whole numbers, each in [lo, hi]; `what` names one in messages ("robot"), and
+  /// a number listed twice is an error.
+  std::vector<std::int64_t> distinct_integers(std::string_view key, std::int64_t lo,
+                                              std::int64_t hi, const std::string& what);
   /// A nested mapping (an empty one if absent).
   Section section(std::string_view key);
   /// A list of mappings.

@@ -286,7 +286,7 @@ agents::BeaconDef read_beacons(Section s) {
   return b;
 }
 
-OutputDef read_output(Section s, double duration_s) {
+OutputDef read_output(Section s, double duration_s, bool acoustic) {
   OutputDef o;
   o.sample_period_s = s.number("sample_period", o.sample_period_s, Range::time());
   o.trajectory_period_s = s.number("trajectory_period", o.trajectory_period_s, Range::time());
@@ -294,6 +294,12 @@ OutputDef read_output(Section s, double duration_s) {
   o.updates = s.boolean("updates", o.updates);
   o.figures = s.boolean("figures", o.figures);
   o.report = s.boolean("report", o.report);
+  if (!acoustic)
+    s.reject("tracking_radius", "'tracking_radius' applies to field kind acoustic");
+  else if (s.has("tracking_radius"))
+    o.tracking_radius = s.number("tracking_radius", 0.0, Range::positive());
+  else  // derived from the domain and the robots; left out of the resolved scenario so that
+    s.mark_known("tracking_radius");  // run keys stay as they were before the key existed
   s.finish();
   return o;
 }
@@ -381,8 +387,11 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
   def.world.domain = read_domain(top.section("domain"));
   const std::string base_dir = std::filesystem::path(file_name).parent_path().string();
   SensorLayout layout;
+  NodeCounts counts;
+  std::size_t errors_before = reader.diagnostics().size();
   def.world.sensors = read_sensors(top.section("sensors"), def.world.domain, def.seed, base_dir,
-                                   reader, layout, def.world.sensor_noise_sigma, caps);
+                                   reader, layout, def.world, caps);
+  if (reader.diagnostics().size() == errors_before) counts.sensors = layout.count;
   def.sensor_count = layout.count;
   def.sensor_layout = layout.kind;
   LimitSections at{top.peek("field"),    top.peek("density_scaling"), top.peek("robots"),
@@ -396,17 +405,19 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
         def.world.field.min_distance;
   }
   def.world.scaling = read_scaling(top.section("density_scaling"));
+  errors_before = reader.diagnostics().size();
   def.world.robots =
-      read_robots(top.section("robots"), def.world.domain, def.seed, def.world.motion, caps);
+      read_robots(top.section("robots"), def.world.domain, def.seed, def.world, caps);
+  if (reader.diagnostics().size() == errors_before) counts.robots = def.world.robots.size();
   def.world.radio = read_radio(top.section("radio"));
   def.world.protocol = read_protocol(top.section("protocol"), def.world.radio.level);
   def.world.beacons = read_beacons(top.section("beacons"));
   read_control(top.section("control"), def.world.field.kind == FieldKind::diffusion,
                def.world.dispenser, def);
-  def.output = read_output(top.section("output"), duration_ok ? def.duration_s : 0.0);
-  for (const char* later : {"groups", "faults"})
-    top.reject(later,
-               std::string("section '") + later + "' is not supported by this version of masnet");
+  def.output = read_output(top.section("output"), duration_ok ? def.duration_s : 0.0,
+                           def.world.field.kind == FieldKind::acoustic);
+  def.world.faults = read_faults(top, duration_ok ? def.duration_s : 0.0, counts);
+  top.reject("groups", "section 'groups' is not supported by this version of masnet");
   top.finish();
   // What the numbers imply (work, densities) only means something once they are all valid.
   if (reader.ok()) check_limits(def, layout.count, caps, at);

@@ -23,6 +23,9 @@ struct OutputDef {
   bool updates = true;                ///< write updates.csv (one row per protocol update)
   bool figures = true;                ///< write figures/ (PNG and SVG)
   bool report = true;                 ///< write report.html
+  /// Acoustic runs: a robot is in a target's group within this distance of it, world units;
+  /// 0 = √(area / (π · robots)), derived by the recorder (docs/outputs.md, "Tracking").
+  double tracking_radius = 0.0;
 };
 
 struct ScenarioDef {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <string_view>
 
@@ -80,6 +81,49 @@ bool random_layout_fits(Section& s, const ConvexPolygon& domain, std::int64_t co
   return false;
 }
 
+// A sensor file's columns: x, y and an optional area in that order, and, when the header
+// names it, a `battery` column anywhere.
+struct SensorColumns {
+  std::optional<std::size_t> battery;  // its index
+  std::size_t count = 0;               // columns per line when there is a battery column
+  std::string names;                   // "x,y,battery", for messages
+};
+
+// The header line (the first, when it is not numbers): `fields` are its cells, `starts` their
+// byte offsets. Only a `battery` column changes how lines are read.
+void read_sensor_header(const std::vector<std::string>& fields,
+                        const std::vector<std::size_t>& starts, const std::string& at,
+                        ScenarioReader& reader, SensorColumns& columns) {
+  const auto trimmed = [](std::string f) {
+    while (!f.empty() && (f.back() == ' ' || f.back() == '\r'))
+      f.pop_back();
+    return f.substr(std::min(f.find_first_not_of(' '), f.size()));
+  };
+  for (std::size_t k = 0; k < fields.size(); ++k) {
+    if (trimmed(fields[k]) != "battery") continue;
+    if (columns.battery) {
+      reader.error(at + std::to_string(starts[k] + 1), "the header names 'battery' twice");
+      columns.battery.reset();
+      return;
+    }
+    columns.battery = k;
+  }
+  if (!columns.battery) return;
+  if (fields.size() != 3 && fields.size() != 4) {
+    reader.error(at + "1",
+                 "a header with a 'battery' column has 3 or 4 columns (x,y[,area] and "
+                 "battery), got " +
+                     std::to_string(fields.size()));
+    columns.battery.reset();
+    return;
+  }
+  columns.count = fields.size();
+  const char* positional[] = {"x", "y", "area"};
+  for (std::size_t k = 0, other = 0; k < fields.size(); ++k)
+    columns.names +=
+        std::string(k ? "," : "") + (k == *columns.battery ? "battery" : positional[other++]);
+}
+
 // `lines` receives the line number of each sensor, to locate later checks in the CSV file.
 std::vector<agents::SensorDef> read_sensor_file(const std::string& path, Section& s,
                                                 ScenarioReader& reader, std::vector<int>& lines,
@@ -90,6 +134,7 @@ std::vector<agents::SensorDef> read_sensor_file(const std::string& path, Section
     s.error_at("file", "cannot read sensor file '" + shown_text(path) + "' (" + problem + ")");
     return sensors;
   }
+  SensorColumns columns;
   std::string_view rest(text);
   int number = 0;
   while (!rest.empty()) {
@@ -99,35 +144,61 @@ std::vector<agents::SensorDef> read_sensor_file(const std::string& path, Section
     ++number;
     if (line.empty() || line[0] == '#') continue;
     std::vector<double> cols;
+    std::vector<std::string> texts;
+    std::vector<std::size_t> starts;  // 0-based byte offset of each field
     std::stringstream fields(line);
     std::string field;
     std::size_t column = 0, bad_column = 0;  // 0-based offset of the first non-number
     std::string bad_field;
     bool numeric = true;
     while (std::getline(fields, field, ',')) {
+      const std::size_t width = field.size() + 1;  // with its comma (or its line's end)
+      if (!field.empty() && field.back() == '\r') field.pop_back();
       char* parsed_end = nullptr;
       const double v = std::strtod(field.c_str(), &parsed_end);
       while (parsed_end && *parsed_end == ' ')
         ++parsed_end;
-      if (numeric && (parsed_end == field.c_str() ||
-                      (parsed_end && *parsed_end != '\0' && *parsed_end != '\r'))) {
+      if (numeric && (parsed_end == field.c_str() || (parsed_end && *parsed_end != '\0'))) {
         numeric = false;
         bad_column = column;
         bad_field = field;
-        if (!bad_field.empty() && bad_field.back() == '\r') bad_field.pop_back();
       }
       cols.push_back(v);
-      column += field.size() + 1;
+      texts.push_back(field);
+      starts.push_back(column);
+      column += width;
     }
     const std::string at = path + ":" + std::to_string(number) + ":";
     if (!numeric) {
-      if (number == 1) continue;  // a header line
+      if (number == 1) {  // a header line
+        read_sensor_header(texts, starts, at, reader, columns);
+        continue;
+      }
+      const std::string lines_are =
+          columns.battery ? "'" + columns.names + "'" : "'x,y' or 'x,y,area'";
       reader.error(
           at + std::to_string(bad_column + 1),
-          "expected a number, got '" + shown_text(bad_field) + "' (lines are 'x,y' or 'x,y,area')");
+          "expected a number, got '" + shown_text(bad_field) + "' (lines are " + lines_are + ")");
       continue;
     }
-    if (cols.size() != 2 && cols.size() != 3) {
+    double battery_j = 0.0;
+    if (columns.battery) {
+      if (cols.size() != columns.count) {
+        reader.error(at + "1", "expected " + std::to_string(columns.count) + " columns (" +
+                                   columns.names + ", as the header says), got " +
+                                   std::to_string(cols.size()));
+        continue;
+      }
+      const std::size_t b = *columns.battery;
+      battery_j = cols[b];
+      if (!(battery_j >= 0.0 && battery_j <= kMaxMagnitude)) {
+        reader.error(at + std::to_string(starts[b] + 1),
+                     "the battery (column " + std::to_string(b + 1) +
+                         ") must be in [0, 1e+12] J (got '" + shown_text(texts[b]) + "')");
+        continue;
+      }
+      cols.erase(cols.begin() + static_cast<std::ptrdiff_t>(b));
+    } else if (cols.size() != 2 && cols.size() != 3) {
       reader.error(at + "1",
                    "expected 2 or 3 columns (x,y[,area]), got " + std::to_string(cols.size()));
       continue;
@@ -148,6 +219,7 @@ std::vector<agents::SensorDef> read_sensor_file(const std::string& path, Section
     agents::SensorDef d;
     d.position = Vec2{cols[0], cols[1]};
     d.area = cols.size() == 3 ? cols[2] : 0.0;
+    d.battery_j = battery_j;
     sensors.push_back(d);
     lines.push_back(number);
   }
@@ -159,11 +231,12 @@ std::vector<agents::SensorDef> read_sensor_file(const std::string& path, Section
 std::vector<agents::SensorDef> read_sensors(Section s, const ConvexPolygon& domain,
                                             std::uint64_t seed, const std::string& base_dir,
                                             ScenarioReader& reader, SensorLayout& layout,
-                                            double& noise_sigma, const NodeCaps& caps) {
+                                            agents::WorldDef& world, const NodeCaps& caps) {
   std::vector<agents::SensorDef> sensors;
   layout.kind = s.choice<std::string>("layout", "grid",
                                       {{"grid", "grid"}, {"random", "random"}, {"file", "file"}});
-  noise_sigma = s.number("noise", 0.0, Range::non_negative());
+  world.sensor_noise_sigma = s.number("noise", 0.0, Range::non_negative());
+  world.sensor_battery_j = s.number("battery", 0.0, Range::non_negative());
   const Vec2 lo = box_low(domain), hi = box_high(domain);
   const double domain_area = protocols::area(domain);
   std::size_t count = 0;
@@ -269,7 +342,7 @@ std::vector<agents::SensorDef> read_sensors(Section s, const ConvexPolygon& doma
 }
 
 std::vector<Vec2> read_robots(Section s, const ConvexPolygon& domain, std::uint64_t seed,
-                              agents::MotionParams& motion, const NodeCaps& caps) {
+                              agents::WorldDef& world, const NodeCaps& caps) {
   std::vector<Vec2> robots;
   const std::string layout = s.choice<std::string>(
       "layout", "grid", {{"grid", "grid"}, {"positions", "positions"}, {"random", "random"}});
@@ -337,12 +410,15 @@ std::vector<Vec2> read_robots(Section s, const ConvexPolygon& domain, std::uint6
   } else {
     s.reject("count", "'count' applies to layout random");
   }
+  agents::MotionParams& motion = world.motion;
   motion.k = s.number("k", 3.0, Range::non_negative());
   motion.k_v = s.number("k_v", 1.0, Range::non_negative());
   motion.max_speed = s.number("max_speed", 0.0, Range::non_negative());
   motion.substep_s = s.number("substep", 1e-3, Range::time());
   motion.jump_to_target =
       s.choice<bool>("dynamics", false, {{"second_order", false}, {"discrete_lloyd", true}});
+  world.robot_battery_j = s.number("battery", 0.0, Range::non_negative());
+  world.locomotion = read_locomotion(s.section("energy"));
   s.finish();
   return robots;
 }

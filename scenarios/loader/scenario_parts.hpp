@@ -1,7 +1,9 @@
 #pragma once
-// The loader's parts that live in their own files (scenario_layout.cpp, scenario_limits.cpp):
-// the node layouts, and the checks of what a scenario's numbers imply. Internal to the loader.
+// The loader's parts that live in their own files (scenario_layout.cpp, scenario_limits.cpp,
+// scenario_faults.cpp, ...): the node layouts, the faults, and the checks of what a scenario's
+// numbers imply. Internal to the loader.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,14 +47,31 @@ struct SensorLayout {
 std::string shown_point(const Vec2& p);
 
 /// The sensors (an empty list when caps.build_sensors is off, but for file layouts);
-/// `layout.count` is their number either way.
+/// `layout.count` is their number either way. Also sets the sensors' noise and battery in
+/// `world`.
 std::vector<agents::SensorDef> read_sensors(Section s, const protocols::ConvexPolygon& domain,
                                             std::uint64_t seed, const std::string& base_dir,
                                             ScenarioReader& reader, SensorLayout& layout,
-                                            double& noise_sigma, const NodeCaps& caps);
+                                            agents::WorldDef& world, const NodeCaps& caps);
 
+/// The robots' positions; also sets their motion, battery and locomotion energy in `world`.
 std::vector<Vec2> read_robots(Section s, const protocols::ConvexPolygon& domain, std::uint64_t seed,
-                              agents::MotionParams& motion, const NodeCaps& caps);
+                              agents::WorldDef& world, const NodeCaps& caps);
+
+/// `robots.energy`: the locomotion energy (scenario_faults.cpp).
+agents::LocomotionEnergy read_locomotion(Section s);
+
+/// How many nodes of each class a fault may name, when known (nullopt: their section had
+/// errors, so ids are not checked against a count that may be wrong).
+struct NodeCounts {
+  std::optional<std::size_t> robots, sensors;
+};
+
+/// The top-level `faults` list, in file order (scenario_faults.cpp). `duration_s` bounds the
+/// times (0: unknown, the clock's limit instead). An absent list leaves the resolved scenario
+/// without `faults`.
+std::vector<agents::FaultDef> read_faults(Section& top, double duration_s,
+                                          const NodeCounts& counts);
 
 /// The `protocol` section: `kind` names a registered protocol; every registered protocol's keys
 /// are validated, the chosen one's are kept (scenario_protocol.cpp).

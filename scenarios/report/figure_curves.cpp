@@ -75,7 +75,7 @@ void draw_tracking(cairo_t* cr, const RunData& run) {
   for (const std::string& g : groups)
     series.push_back(&ts.column(g));
   Axes bottom = time_axes(cr, {90, 300, 640, 210}, run, series, Scale::linear, true);
-  bottom.decorate("t (s)", "robots nearest to the target");
+  bottom.decorate("t (s)", "robots in the target's group");
   for (std::size_t k = 0; k < groups.size(); ++k)
     bottom.steps(t, ts.column(groups[k]), Style{plot::categorical(k), 2.0},
                  fmt::format("target {}", k));

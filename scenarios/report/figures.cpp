@@ -473,7 +473,8 @@ std::vector<FigureInfo> write_figures(const RunData& run, const fs::path& figure
       760, 560, [&](cairo_t* cr) { draw_coverage(cr, run); });
   if (run.timeseries.has("tracking_error_mean"))
     add({"tracking", "curve",
-         "Tracking error (distance from each target to its nearest robot) and robots per target."},
+         "Tracking error (distance from each target to its nearest robot) and robots per target "
+         "(robots within the tracking radius of their nearest target)."},
         760, 560, [&](cairo_t* cr) { draw_tracking(cr, run); });
   if (run.timeseries.has("pollution_total"))
     add({"pollution", "curve",

@@ -135,33 +135,17 @@ void Recorder::sample() {
     for (std::size_t n = 0; n < radio.node_count(); ++n)
       row.energy_j += radio.stats(sim::node_id(static_cast<std::uint32_t>(n))).energy_idle_j;
 
-  // Tracking: each target's nearest robot, and each robot's nearest target (its group).
-  if (world_.def().field.kind == agents::FieldKind::acoustic && n_robots > 0) {
-    const std::vector<Vec2> targets = world_.source_positions();
-    row.robots_per_target.assign(targets.size(), 0);
-    for (const Vec2& target : targets) {
-      double best = std::numeric_limits<double>::infinity();
-      for (const Vec2& p : robots)
-        best = std::min(best, (p - target).norm());
-      row.tracking_mean += best / static_cast<double>(targets.size());
-      row.tracking_max = std::max(row.tracking_max, best);
+  // Tracking: each target's nearest robot, and the robots in each target's group.
+  if (world_.def().field.kind == agents::FieldKind::acoustic) {
+    if (!tracking_) {
+      const double area = protocols::area(world_.def().domain);
+      tracking_.emplace(def_.output.tracking_radius > 0 ? def_.output.tracking_radius
+                                                        : default_tracking_radius(area, n_robots));
     }
-    std::vector<int> group(n_robots, 0);
-    for (std::size_t i = 0; i < n_robots; ++i) {
-      double best = std::numeric_limits<double>::infinity();
-      for (std::size_t k = 0; k < targets.size(); ++k) {
-        const double d = (robots[i] - targets[k]).norm();
-        if (d < best) {
-          best = d;
-          group[i] = static_cast<int>(k);
-        }
-      }
-      ++row.robots_per_target[static_cast<std::size_t>(group[i])];
-    }
-    if (!last_group_.empty())
-      for (std::size_t i = 0; i < n_robots; ++i)
-        group_changes_ += group[i] != last_group_[i] ? 1 : 0;
-    last_group_ = group;
+    TrackingSample t = tracking_->sample(row.t_s, robots, world_.source_positions());
+    row.tracking_mean = t.error_mean;
+    row.tracking_max = t.error_max;
+    row.robots_per_target = std::move(t.group_sizes);
   }
   if (const agents::DiffusionField* field = world_.diffusion()) {
     row.pollution_total = world_.pollution_total();
@@ -560,18 +544,11 @@ nlohmann::json Recorder::summary_metrics() const {
     j["coverage"] = {{"final_cost", last.coverage_cost},
                      {"max_dist_to_centroid", last.max_dist_to_centroid},
                      {"mean_dist_to_centroid", last.mean_dist_to_centroid}};
-    if (def_.world.field.kind == agents::FieldKind::acoustic) {
-      double mean = 0, max_after_1s = 0;
-      for (const Sample& s : samples_) {
-        mean += s.tracking_mean;
-        if (s.t_s >= 1.0) max_after_1s = std::max(max_after_1s, s.tracking_max);
-      }
-      j["tracking"] = {{"mean_error", mean / static_cast<double>(samples_.size())},
-                       {"max_error_after_1s", max_after_1s},
-                       {"robots_per_target", last.robots_per_target},
-                       {"group_changes", group_changes_},
-                       {"clamped_readings", world_.clamped_readings()},
-                       {"sensor_readings", world_.sensor_readings()}};
+    if (tracking_) {
+      nlohmann::json tracking = tracking_->summary();
+      tracking["clamped_readings"] = world_.clamped_readings();
+      tracking["sensor_readings"] = world_.sensor_readings();
+      j["tracking"] = std::move(tracking);
     }
   }
   return j;

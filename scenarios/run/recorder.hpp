@@ -4,6 +4,7 @@
 // trajectories and snapshots. Sampling runs between `run_until` chunks, not as events, so
 // what is recorded never changes the event stream or its fingerprint.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "agents/world.hpp"
 #include "scenarios/loader/scenario.hpp"
 #include "scenarios/run/lifetime_outputs.hpp"
+#include "scenarios/run/tracking_metrics.hpp"
 
 namespace masnet::scenarios {
 
@@ -25,6 +27,7 @@ struct Sample {
   std::uint64_t messages = 0, bytes = 0;       ///< transmissions so far
   double energy_j = 0;                         ///< radio energy so far, all nodes
   double tracking_mean = 0, tracking_max = 0;  ///< distance from targets to their nearest robot
+  /// Robots in each target's group (docs/outputs.md, "Tracking").
   std::vector<std::uint32_t> robots_per_target;
   double cell_correctness = 1.0;        ///< share of updates so far with the oracle's neighbour set
   double cell_correctness_heard = 1.0;  ///< the same against the cell of the positions heard
@@ -99,8 +102,7 @@ class Recorder final : public agents::WorldObserver {
   std::vector<UpdateRow> updates_;
   nlohmann::json snapshots_ = nlohmann::json::array();
   std::uint64_t correct_updates_ = 0, correct_heard_updates_ = 0;
-  std::vector<int> last_group_;  // nearest target of each robot at the last sample
-  std::uint64_t group_changes_ = 0;
+  std::optional<TrackingMetrics> tracking_;  // acoustic runs, from the first sample
   bool has_baseline_ = false;
   LifetimeLog lifetime_;
   bool has_twin_ = false;

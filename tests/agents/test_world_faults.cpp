@@ -179,8 +179,7 @@ TEST_CASE("While a partition stands no robot hears across it; after, cells are r
   CHECK(static_cast<double>(after_correct) / static_cast<double>(after) > 0.95);
 }
 
-TEST_CASE("The same faults and seed give the same run; faults are in the fingerprint",
-          "[faults]") {
+TEST_CASE("The same faults and seed give the same run; faults are in the fingerprint", "[faults]") {
   auto fingerprint = [](const WorldDef& def) {
     sim::Simulator simulator;
     World world(simulator, def);
@@ -259,7 +258,7 @@ TEST_CASE("Travel integrals match the damped spring's closed form", "[faults]") 
   double v_min = 0.0;
   for (int i = 0; i <= 200000; ++i)
     v_min = std::min(v_min, agents::damped_spring(params.k, params.k_v, x0, 0.0, T * i / 2e5).v);
-  CHECK(travel.accel == Approx(end.v - 2.0 * v_min).epsilon(1e-6));
+  CHECK(travel.accel == Approx(end.v - 2.0 * v_min).epsilon(1e-4));  // a kink where a = 0
 }
 
 TEST_CASE("Locomotion energy is booked per metre and per unit of acceleration", "[faults]") {

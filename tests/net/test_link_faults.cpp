@@ -59,9 +59,9 @@ TEST_CASE("A line cut separates exactly the segments that meet it", "[faults]") 
   CHECK(cut.separates(Vec2{0.2, 0.1}, Vec2{0.9, 0.95}));
   CHECK_FALSE(cut.separates(Vec2{0.2, 0.5}, Vec2{0.4, 0.9}));
   CHECK_FALSE(cut.separates(Vec2{0.2, 1.2}, Vec2{0.8, 1.2}));  // past the segment's end
-  CHECK(cut.separates(Vec2{0.5, 0.3}, Vec2{0.8, 0.3}));         // touching counts
-  CHECK(cut.separates(Vec2{0.5, -0.5}, Vec2{0.5, 0.2}));        // collinear, overlapping
-  CHECK_FALSE(cut.separates(Vec2{0.5, 1.5}, Vec2{0.5, 2.0}));   // collinear, apart
+  CHECK(cut.separates(Vec2{0.5, 0.3}, Vec2{0.8, 0.3}));        // touching counts
+  CHECK(cut.separates(Vec2{0.5, -0.5}, Vec2{0.5, 0.2}));       // collinear, overlapping
+  CHECK_FALSE(cut.separates(Vec2{0.5, 1.5}, Vec2{0.5, 2.0}));  // collinear, apart
 }
 
 TEST_CASE("Regions: disks and polygons, convex or not", "[faults]") {

@@ -100,6 +100,10 @@ std::set<std::string> loader_keys() {
        "{model: states, tx_currents: [[0, 0.0174]]}}"},
       {"field={kind: uniform, value: 2}", "robots={layout: positions, positions: [[0.5, 0.5]]}",
        "density_scaling={kind: saturate, c: 2}", "sensors={layout: grid, alignment: interior}"},
+      {"faults=[{at: 0.1, until: 0.5, kill: robots, ids: [0]}, {at: 0.1, kill: sensors, "
+       "fraction: 0.5}, {at: 0.1, kill: robots, region: {center: [0.5, 0.5], radius: 0.2}}, "
+       "{at: 0.2, partition: {line: [[0.5, 0], [0.5, 1]]}}, {at: 0.2, degrade: {loss: 0.5, "
+       "region: {polygon: [[0, 0], [1, 0], [0, 1]]}}}]"},
   };
   for (const auto& sets : variants)
     add(load_scenario_text(base, file, sets, std::nullopt, count_only), sets[0]);
