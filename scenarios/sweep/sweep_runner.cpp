@@ -57,6 +57,9 @@ RunResult execute_sweep_run(const SweepDef& sweep, const RunSpec& run, const std
     }
     // The resolved scenario is (base, overrides, seed) again: not worth a copy per row.
     if (result.summary.contains("scenario")) result.summary["scenario"].erase("resolved");
+    // One number per robot would be a column per robot (10⁴ in the scaling benchmark).
+    if (result.summary.contains("energy_j") && result.summary["energy_j"].contains("locomotion"))
+      result.summary["energy_j"]["locomotion"].erase("per_robot");
     result.ok = true;
   } catch (const OutputError& e) {
     result.ok = false;

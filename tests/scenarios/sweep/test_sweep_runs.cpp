@@ -88,6 +88,10 @@ TEST_CASE(
                   "protocol_kind,"
                   "p_radio_loss,",
                   0) == 0);
+  // Locomotion as one total, not a column per robot.
+  const std::string header = csv.substr(0, csv.find('\n'));
+  CHECK(header.find(",energy_j_locomotion_total,") != std::string::npos);
+  CHECK(header.find("energy_j_locomotion_per_robot") == std::string::npos);
   // Failed runs are in the report with their message.
   const std::string html = slurp(base / "out1" / "report.html");
   CHECK(html.find("12 in the sweep: 8 ok, 4 failed, 0 not run") != std::string::npos);
