@@ -27,6 +27,25 @@ const std::vector<double>& column_or_empty(const Table& t, std::string_view name
 /// Rows of trajectories.csv grouped by robot.
 std::map<std::size_t, std::vector<std::size_t>> rows_by_robot(const Table& t);
 
+// Maps of Ω (figures.cpp).
+/// Sensor values as a raster: one cell per sensor for grid layouts, else each pixel of a
+/// 160 × 160 raster takes its nearest sensor's value.
+plot::Raster sensor_raster(const std::vector<plot::Point>& sensors,
+                           const std::vector<double>& values,
+                           const std::vector<plot::Point>& domain);
+/// Axes over Ω with equal aspect and a small margin.
+plot::Axes map_axes(cairo_t* cr, plot::Box box, const RunData& run);
+/// Clips to Ω (inside an Axes::clip).
+void clip_to_domain(cairo_t* cr, const plot::Axes& axes, const std::vector<plot::Point>& domain);
+
+// Faults and lifetime (fault_figures.cpp): runs whose summary.json has `lifetime`.
+/// Sensors coloured by their radio energy, robots marked, nodes down at the end crossed.
+void draw_energy_map(cairo_t* cr, const RunData& run);
+/// Sensors and robots up over time, the faults' times marked.
+void draw_alive_nodes(cairo_t* cr, const RunData& run);
+/// Coverage cost and tracking error (or cell correctness) beside the fault-free twin's.
+void draw_twin_comparison(cairo_t* cr, const RunData& run);
+
 // The curves over time (figure_curves.cpp).
 void draw_coverage(cairo_t* cr, const RunData& run);
 void draw_tracking(cairo_t* cr, const RunData& run);

@@ -107,6 +107,10 @@ std::size_t nearest_index(const std::vector<double>& sorted, double x) {
   return i;
 }
 
+}  // namespace
+
+namespace figure_parts {
+
 // Sensor values as a raster: one cell per sensor for grid layouts; otherwise each pixel of a
 // 160 × 160 raster over Ω's bounding box takes its nearest sensor's value.
 plot::Raster sensor_raster(const std::vector<Point>& sensors, const std::vector<double>& values,
@@ -184,6 +188,10 @@ void clip_to_domain(cairo_t* cr, const Axes& axes, const std::vector<Point>& dom
   cairo_close_path(cr);
   cairo_clip(cr);
 }
+
+}  // namespace figure_parts
+
+namespace {
 
 bool is_diffusion(const RunData& run) {
   return run.field_kind == "diffusion";
@@ -487,6 +495,19 @@ std::vector<FigureInfo> write_figures(const RunData& run, const fs::path& figure
     add({"collisions", "curve",
          "Receptions lost to overlapping frames: so far, and per second of each sample period."},
         760, 560, [&](cairo_t* cr) { draw_collisions(cr, run); });
+  // Runs with faults or batteries (kind "fault": the report shows them with the lifetime).
+  if (run.summary.contains("lifetime"))
+    add({"energy_map", "fault",
+         "Radio energy each sensor spent, the robots, and the nodes down at the end (crossed)."},
+        680, 640, [&](cairo_t* cr) { draw_energy_map(cr, run); });
+  if (run.timeseries.has("alive_sensors"))
+    add({"alive_nodes", "fault", "Sensors and robots up over time, with the faults' times."}, 760,
+        560, [&](cairo_t* cr) { draw_alive_nodes(cr, run); });
+  if (run.timeseries.has("coverage_cost_twin"))
+    add({"twin_comparison", "fault",
+         "Coverage cost and tracking error (or cell correctness) of the run and of its fault-free "
+         "twin, with the faults' times."},
+        760, 560, [&](cairo_t* cr) { draw_twin_comparison(cr, run); });
   return figures;
 }
 

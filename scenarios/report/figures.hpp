@@ -22,7 +22,7 @@ struct FigureOptions {
 /// A figure written as figures/<stem>.png and figures/<stem>.svg.
 struct FigureInfo {
   std::string stem;
-  std::string kind;     ///< snapshot, field, trajectories or curve
+  std::string kind;     ///< snapshot, field, trajectories, curve or fault
   std::string caption;  ///< one sentence for the report
   double t_s = std::numeric_limits<double>::quiet_NaN();  ///< snapshot and field figures
 };

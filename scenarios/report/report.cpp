@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "scenarios/output/output_file.hpp"
+#include "scenarios/report/fault_tables.hpp"
 #include "scenarios/report/message_table.hpp"
 
 namespace masnet::scenarios {
@@ -175,6 +176,16 @@ json chart_specs(const Table& ts) {
        "Cell correctness (all updates so far)",
        "share",
        {{"cell_correctness", "correct neighbour sets", "#2ca02c"}}},
+      {"chart-alive",
+       "Nodes up",
+       "nodes",
+       {{"alive_sensors", "sensors", "#1f77b4", false, true},
+        {"alive_robots", "robots", "#ff7f0e", false, true}}},
+      {"chart-twin",
+       "Coverage cost beside the fault-free twin",
+       "H",
+       {{"coverage_cost", "with faults", "#1f77b4"},
+        {"coverage_cost_twin", "fault-free twin", "#7f7f7f", true}}},
       {"chart-collisions",
        "Collisions (cumulative)",
        "receptions lost to overlap",
@@ -408,7 +419,9 @@ fs::path write_report(const RunData& run, const std::vector<FigureInfo>& figures
     << "<nav><a href=\"#metadata\">Run</a><a href=\"#scenario\">Scenario</a><a "
        "href=\"#messages\">Messages and "
        "energy</a><a href=\"#protocol\">Protocol</a><a href=\"#results\">Results</a><a "
-       "href=\"#snapshots\">Snapshots</a><a href=\"#charts\">Time series</a><a "
+       "href=\"#snapshots\">Snapshots</a>"
+    << (has_lifetime_section(s) ? "<a href=\"#lifetime\">Lifetime and faults</a>" : "")
+    << "<a href=\"#charts\">Time series</a><a "
        "href=\"#figures\">Figures</a></nav>\n"
     << "</header>\n";
 
@@ -452,7 +465,8 @@ fs::path write_report(const RunData& run, const std::vector<FigureInfo>& figures
     << "</section>\n";
 
   // Results: every other section of summary.json (coverage, tracking, pollution, …).
-  static const std::set<std::string> kShown{"scenario", "messages", "energy_j", "protocol"};
+  static const std::set<std::string> kShown{"scenario", "messages", "energy_j",
+                                            "protocol", "lifetime", "twin"};
   h << "<section id=\"results\">\n<h2>Results</h2>\n";
   for (const auto& [key, value] : s.items()) {
     if (kShown.count(key) || !value.is_object()) continue;
@@ -486,6 +500,16 @@ fs::path write_report(const RunData& run, const std::vector<FigureInfo>& figures
   }
   h << "</section>\n";
 
+  if (has_lifetime_section(s)) {
+    h << "<section id=\"lifetime\">\n<h2>Lifetime and faults</h2>\n" << lifetime_tables(s);
+    for (const FigureInfo& f : figures)
+      if (f.kind == "fault")
+        h << "<figure id=\"figure-" << escape_html(f.stem) << "\">\n"
+          << image(figures_dir, f) << "<figcaption>" << escape_html(f.caption)
+          << "</figcaption>\n</figure>\n";
+    h << "</section>\n";
+  }
+
   // Interactive charts.
   const json specs = chart_specs(run.timeseries);
   h << "<section id=\"charts\">\n<h2>Time series (interactive)</h2>\n";
@@ -505,7 +529,7 @@ fs::path write_report(const RunData& run, const std::vector<FigureInfo>& figures
   h << "<section id=\"figures\">\n<h2>Figures</h2>\n";
   bool any = false;
   for (const FigureInfo& f : figures) {
-    if (f.kind == "snapshot" || f.kind == "field") continue;
+    if (f.kind == "snapshot" || f.kind == "field" || f.kind == "fault") continue;
     any = true;
     h << "<figure id=\"figure-" << escape_html(f.stem) << "\">\n"
       << image(figures_dir, f) << "<figcaption>" << escape_html(f.caption) << " (figures/"

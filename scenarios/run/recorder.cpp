@@ -12,6 +12,7 @@
 #include "protocols/heard_cell.hpp"
 #include "scenarios/output/output_file.hpp"
 #include "scenarios/run/contention_outputs.hpp"
+#include "scenarios/run/curve_summary.hpp"
 #include "scenarios/run/energy_outputs.hpp"
 
 namespace masnet::scenarios {
@@ -25,7 +26,8 @@ nlohmann::json point(const Vec2& p) {
 
 }  // namespace
 
-Recorder::Recorder(agents::World& world, const ScenarioDef& def) : world_(world), def_(def) {}
+Recorder::Recorder(agents::World& world, const ScenarioDef& def)
+    : world_(world), def_(def), lifetime_(world.robot_count(), world.sensor_count()) {}
 
 void Recorder::assign_sensors(const std::vector<Vec2>& robots,
                               std::vector<std::uint32_t>& nearest) const {
@@ -86,30 +88,40 @@ void Recorder::sample() {
   for (std::size_t i = 0; i < n_robots; ++i)
     robots[i] = world_.robot_state(i).position;
 
-  // Coverage cost and true centroids over the sensor-sampled density SK(ρ)·A.
+  // Coverage cost and true centroids over the sensor-sampled density SK(ρ)·A, among the robots
+  // that are up: a dead robot covers nothing.
+  std::vector<Vec2> up;
+  std::vector<std::size_t> up_index;
+  for (std::size_t i = 0; i < n_robots; ++i)
+    if (world_.node_alive(world_.robot_node(i))) {
+      up.push_back(robots[i]);
+      up_index.push_back(i);
+    }
+  const std::size_t n_up = up.size();
+  if (n_up == 0 && n_robots > 0) row.coverage_cost = std::numeric_limits<double>::quiet_NaN();
   std::vector<std::uint32_t> nearest;
-  assign_sensors(robots, nearest);
-  std::vector<double> mass(n_robots, 0.0), mx(n_robots, 0.0), my(n_robots, 0.0);
-  for (std::size_t s = 0; s < n_sensors && n_robots > 0; ++s) {
+  assign_sensors(up, nearest);
+  std::vector<double> mass(n_up, 0.0), mx(n_up, 0.0), my(n_up, 0.0);
+  for (std::size_t s = 0; s < n_sensors && n_up > 0; ++s) {
     const auto& sensor = world_.def().sensors[s];
     const double w = world_.def().scaling(world_.true_density(s)) * sensor.area;
     const std::uint32_t i = nearest[s];
-    row.coverage_cost += w * (sensor.position - robots[i]).squaredNorm();
+    row.coverage_cost += w * (sensor.position - up[i]).squaredNorm();
     mass[i] += w;
     mx[i] += w * sensor.position.x();
     my[i] += w * sensor.position.y();
   }
   std::size_t with_mass = 0;
-  for (std::size_t i = 0; i < n_robots; ++i) {
-    row.mean_radius += world_.robot_protocol(i).radius();
+  for (std::size_t i = 0; i < n_up; ++i) {
+    row.mean_radius += world_.robot_protocol(up_index[i]).radius();
     if (mass[i] <= 0.0) continue;
-    const double d = (Vec2{mx[i] / mass[i], my[i] / mass[i]} - robots[i]).norm();
+    const double d = (Vec2{mx[i] / mass[i], my[i] / mass[i]} - up[i]).norm();
     row.mean_dist_to_centroid += d;
     row.max_dist_to_centroid = std::max(row.max_dist_to_centroid, d);
     ++with_mass;
   }
   if (with_mass) row.mean_dist_to_centroid /= static_cast<double>(with_mass);
-  if (n_robots) row.mean_radius /= static_cast<double>(n_robots);
+  if (n_up) row.mean_radius /= static_cast<double>(n_up);
 
   net::Radio& radio = world_.radio();
   for (std::size_t t = 0; t < net::message_type_count(); ++t) {
@@ -149,6 +161,7 @@ void Recorder::sample() {
   row.cell_correctness_heard = updates_.empty() ? 1.0
                                                 : static_cast<double>(correct_heard_updates_) /
                                                       static_cast<double>(updates_.size());
+  lifetime_.fill(row, world_, updates_.size(), correct_updates_);
   samples_.push_back(std::move(row));
 }
 
@@ -158,6 +171,11 @@ void Recorder::attach_baseline(const std::vector<Sample>& baseline) {
     samples_[k].pollution_integral_baseline = baseline[k].pollution_integral;
   }
   has_baseline_ = true;
+}
+
+void Recorder::attach_twin(const std::vector<Sample>& twin) {
+  attach_twin_samples(samples_, twin);
+  has_twin_ = true;
 }
 
 void Recorder::sample_trajectories() {
@@ -239,7 +257,13 @@ void Recorder::on_update(std::size_t robot, const protocols::UpdateRecord& recor
 }
 
 void Recorder::on_battery_empty(sim::NodeId node) {
-  deaths_.emplace_back(node, sim::to_seconds(world_.simulator().now()));
+  on_node_down(node, agents::DownCause::battery);
+}
+void Recorder::on_node_down(sim::NodeId node, agents::DownCause cause) {
+  lifetime_.down(node, world_.is_robot(node), cause, sim::to_seconds(world_.simulator().now()));
+}
+void Recorder::on_node_up(sim::NodeId node) {
+  lifetime_.up(node, world_.is_robot(node), sim::to_seconds(world_.simulator().now()));
 }
 
 void Recorder::write_timeseries(const std::string& path) const {
@@ -259,6 +283,8 @@ void Recorder::write_timeseries(const std::string& path) const {
     out.print(",pollution_total_baseline,pollution_integral_baseline");
   const bool contended = world_.radio().contention() != nullptr;
   if (contended) out.print(",collisions");
+  const bool lifetime = has_lifetime_outputs(def_.world);
+  if (lifetime) out.print("{}", lifetime_columns(has_twin_, targets > 0));
   out.print("\n");
   for (const Sample& s : samples_) {
     out.print("{},{},{},{},{},{},{},{},{},{},{}", s.t_s, s.coverage_cost, s.mean_dist_to_centroid,
@@ -273,6 +299,7 @@ void Recorder::write_timeseries(const std::string& path) const {
     if (pollution && has_baseline_)
       out.print(",{},{}", s.pollution_total_baseline, s.pollution_integral_baseline);
     if (contended) out.print(",{}", s.collisions);
+    if (lifetime) out.print("{}", lifetime_values(s, has_twin_, targets > 0));
     out.print("\n");
   }
   out.close();
@@ -332,6 +359,8 @@ void Recorder::write_nodes(const std::string& path) const {
   net::Radio& radio = world_.radio();
   const net::ContendedMedium* medium = radio.contention();
   if (medium) out.print("{}", kContentionNodeColumns);
+  const bool lifetime = has_lifetime_outputs(def_.world);
+  if (lifetime) out.print(",locomotion_j,distance_m");
   out.print("\n");
   // Rows are formatted with compiled formats into a buffer written in large pieces: a million
   // sensors make a 160 MB file, and a runtime format string parsed 20 times a row was most of
@@ -364,6 +393,11 @@ void Recorder::write_nodes(const std::string& path) const {
       fmt::format_to(it, FMT_COMPILE(",{},{}"), c.tx_count, c.rx_count);
     }
     if (medium) append_contention_node(*medium, id, rows);
+    if (lifetime && robot)
+      fmt::format_to(it, FMT_COMPILE(",{},{}"), world_.locomotion_energy_j(index),
+                     world_.distance_travelled_m(index));
+    else if (lifetime)
+      rows.append(std::string_view(",,"));
     rows.push_back('\n');
     if (rows.size() >= kWriteChunkBytes) {
       out.write(std::string_view(rows.data(), rows.size()));
@@ -377,37 +411,6 @@ void Recorder::write_nodes(const std::string& path) const {
 void Recorder::write_snapshots(const std::string& path) const {
   write_file(path, snapshots_.dump() + "\n");
 }
-
-namespace {
-
-// Peak, final, final/peak, whether the curve never rises after its peak, and the first time it
-// falls below `threshold` after the peak (null if never).
-nlohmann::json curve_summary(const std::vector<Sample>& samples, double Sample::*value,
-                             double threshold_or_zero) {
-  std::size_t peak_at = 0;
-  for (std::size_t k = 0; k < samples.size(); ++k)
-    if (samples[k].*value > samples[peak_at].*value) peak_at = k;
-  const double peak = samples[peak_at].*value, final = samples.back().*value;
-  bool monotonic = true;
-  for (std::size_t k = peak_at + 1; k < samples.size(); ++k)
-    if (samples[k].*value > samples[k - 1].*value) monotonic = false;
-  const double threshold = threshold_or_zero > 0 ? threshold_or_zero : 0.05 * peak;
-  nlohmann::json clean = nullptr;
-  for (std::size_t k = peak_at; k < samples.size(); ++k)
-    if (samples[k].*value < threshold) {
-      clean = samples[k].t_s;
-      break;
-    }
-  return {{"peak", peak},
-          {"peak_time_s", samples[peak_at].t_s},
-          {"final", final},
-          {"final_over_peak", peak > 0 ? final / peak : 0.0},
-          {"monotonic_after_peak", monotonic},
-          {"clean_threshold", threshold},
-          {"time_to_clean_s", clean}};
-}
-
-}  // namespace
 
 nlohmann::json Recorder::pollution_summary() const {
   nlohmann::json p = curve_summary(samples_, &Sample::pollution_total, def_.clean_threshold);
@@ -484,6 +487,9 @@ nlohmann::json Recorder::summary_metrics() const {
                    {"per_sensor_max", max_sensor},
                    {"nodes_dead", dead},
                    {"by_type", energy_by_type(radio)}};
+  add_energy_details(j["energy_j"], world_, updates_.size());
+  if (has_lifetime_outputs(def_.world)) j["lifetime"] = lifetime_.summary(world_);
+  if (has_twin_) j["recovery"] = recovery_summary(def_.world.faults, samples_);
 
   // Protocol statistics over all updates.
   nlohmann::json p;

@@ -12,6 +12,7 @@
 
 #include "agents/world.hpp"
 #include "scenarios/loader/scenario.hpp"
+#include "scenarios/run/lifetime_outputs.hpp"
 #include "scenarios/run/tracking_metrics.hpp"
 
 namespace masnet::scenarios {
@@ -38,6 +39,12 @@ struct Sample {
   double pollution_max = 0;       ///< max u over the PDE grid
   double neutraliser_used = 0;    ///< released by all dispensers so far
   double pollution_total_baseline = 0, pollution_integral_baseline = 0;  ///< same run, no control
+  // Runs with faults or batteries (lifetime_outputs.hpp).
+  std::size_t alive_sensors = 0, alive_robots = 0;
+  double locomotion_j = 0;               ///< all robots so far
+  double cell_correctness_recent = 1.0;  ///< among the updates since the previous sample
+  double coverage_cost_twin = 0, tracking_mean_twin = 0;  ///< the fault-free twin's
+  double cell_correctness_recent_twin = 1.0;
 };
 
 class Recorder final : public agents::WorldObserver {
@@ -50,6 +57,8 @@ class Recorder final : public agents::WorldObserver {
 
   void on_update(std::size_t robot, const protocols::UpdateRecord& record) override;
   void on_battery_empty(sim::NodeId node) override;
+  void on_node_down(sim::NodeId node, agents::DownCause cause) override;
+  void on_node_up(sim::NodeId node) override;
 
   /// Files of the run directory (`dir` exists).
   void write_timeseries(const std::string& path) const;
@@ -65,6 +74,8 @@ class Recorder final : public agents::WorldObserver {
   const std::vector<Sample>& samples() const { return samples_; }
   /// Takes the pollution curves of the uncontrolled twin run (same sample times).
   void attach_baseline(const std::vector<Sample>& baseline);
+  /// Takes the curves of the fault-free twin run (same sample times).
+  void attach_twin(const std::vector<Sample>& twin);
 
  private:
   struct UpdateRow {
@@ -92,8 +103,9 @@ class Recorder final : public agents::WorldObserver {
   nlohmann::json snapshots_ = nlohmann::json::array();
   std::uint64_t correct_updates_ = 0, correct_heard_updates_ = 0;
   std::optional<TrackingMetrics> tracking_;  // acoustic runs, from the first sample
-  std::vector<std::pair<sim::NodeId, double>> deaths_;
   bool has_baseline_ = false;
+  LifetimeLog lifetime_;
+  bool has_twin_ = false;
 };
 
 }  // namespace masnet::scenarios

@@ -100,8 +100,30 @@ void Run::execute(const ProgressFn& progress) {
     recorder_->attach_baseline(baseline.recorder().samples());
     baseline_fingerprint_ = baseline.fingerprint();
   }
+  if (!def_.world.faults.empty()) run_fault_free_twin();
   wall_time_s_ =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+}
+
+void Run::run_fault_free_twin() {
+  // The same scenario and seed without its faults: what the faults cost is the difference
+  // (docs/outputs.md, `twin` and `recovery`).
+  ScenarioDef twin = def_;
+  twin.world.faults.clear();
+  twin.baseline = false;
+  twin.output.snapshots.clear();
+  Run fault_free(twin);
+  sim::Log(*simulator_).info("the fault-free twin runs now; its clock starts again at 0");
+  fault_free.execute();
+  recorder_->attach_twin(fault_free.recorder().samples());
+  const nlohmann::json metrics = fault_free.recorder().summary_metrics();
+  twin_ = {{"fingerprint", fault_free.fingerprint()},
+           {"coverage_final_cost", metrics.at("coverage").at("final_cost")},
+           {"tracking_mean_error", metrics.contains("tracking")
+                                       ? metrics["tracking"].value("mean_error", nlohmann::json())
+                                       : nlohmann::json()},
+           {"energy_total_j", metrics.at("energy_j").at("total")},
+           {"updates", metrics.at("protocol").at("updates")}};
 }
 
 nlohmann::json Run::summary() const {
@@ -115,6 +137,7 @@ nlohmann::json Run::summary() const {
   j["traffic_fingerprint"] = traffic_fingerprint();
   j["run_key"] = run_key(def_);
   if (!baseline_fingerprint_.empty()) j["baseline_fingerprint"] = baseline_fingerprint_;
+  if (!twin_.is_null()) j["twin"] = twin_;
   j["scenario"] = {{"name", def_.name},
                    {"source", def_.source_path},
                    {"sensors", world_->sensor_count()},

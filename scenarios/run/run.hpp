@@ -39,12 +39,16 @@ class Run {
   double wall_time_s() const { return wall_time_s_; }
 
  private:
+  /// Runs the scenario again without its faults and attaches that twin's curves.
+  void run_fault_free_twin();
+
   ScenarioDef def_;  // a copy: the world and recorder refer to it for the whole run
   std::unique_ptr<sim::Simulator> simulator_;
   std::unique_ptr<agents::World> world_;
   std::unique_ptr<Recorder> recorder_;
   double wall_time_s_ = 0.0;
   std::string baseline_fingerprint_;
+  nlohmann::json twin_;  // runs with faults: the fault-free twin's figures
   std::string traffic_fingerprint_;
 };
 
