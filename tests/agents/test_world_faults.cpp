@@ -179,7 +179,8 @@ TEST_CASE("While a partition stands no robot hears across it, and after it cells
   CHECK(static_cast<double>(after_correct) / static_cast<double>(after) > 0.95);
 }
 
-TEST_CASE("The same faults and seed give the same run, and faults are in the fingerprint", "[faults]") {
+TEST_CASE("The same faults and seed give the same run, and faults are in the fingerprint",
+          "[faults]") {
   auto fingerprint = [](const WorldDef& def) {
     sim::Simulator simulator;
     World world(simulator, def);
