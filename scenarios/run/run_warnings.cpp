@@ -53,8 +53,13 @@ std::vector<std::string> run_warnings(const nlohmann::json& summary, double loss
   } else if (protocol.value("name", std::string()) != "none" && protocol.contains("name")) {
     warnings.push_back("no robot completed a protocol update during the run");
   }
+  // Nodes a scripted fault took down are the scenario's doing, not a surprise: only batteries.
   const nlohmann::json energy = summary.value("energy_j", nlohmann::json::object());
-  if (const double dead = number(energy, "nodes_dead"); dead > 0)
+  const nlohmann::json deaths =
+      summary.value("lifetime", nlohmann::json::object()).value("deaths", nlohmann::json::object());
+  const double dead =
+      deaths.contains("battery") ? number(deaths, "battery") : number(energy, "nodes_dead");
+  if (dead > 0)
     warnings.push_back(
         fmt::format("{:.0f} node{} ran out of battery during the run", dead, dead == 1 ? "" : "s"));
   return warnings;

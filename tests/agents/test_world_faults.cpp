@@ -145,7 +145,7 @@ TEST_CASE("A restarted robot runs its protocol again from where it stood", "[fau
   CHECK(world.alive_robot_count() == 9);
 }
 
-TEST_CASE("While a partition stands no robot hears across it; after, cells are right again",
+TEST_CASE("While a partition stands no robot hears across it, and after it cells are right again",
           "[faults]") {
   WorldDef def = still_robots();
   agents::FaultDef fault;
@@ -179,7 +179,8 @@ TEST_CASE("While a partition stands no robot hears across it; after, cells are r
   CHECK(static_cast<double>(after_correct) / static_cast<double>(after) > 0.95);
 }
 
-TEST_CASE("The same faults and seed give the same run; faults are in the fingerprint", "[faults]") {
+TEST_CASE("The same faults and seed give the same run, and faults are in the fingerprint",
+          "[faults]") {
   auto fingerprint = [](const WorldDef& def) {
     sim::Simulator simulator;
     World world(simulator, def);

@@ -43,6 +43,13 @@ TEST_CASE("A healthy run has no warnings, each degenerate symptom its own", "[sc
             "26 of 100 updates heard no sensor reading with mass: those robots did not move"});
   CHECK(run_warnings(metrics(100, 0.99, 0, 0, 1), 0.0) ==
         std::vector<std::string>{"1 node ran out of battery during the run"});
+  // Nodes a scripted fault killed are no battery's doing.
+  json faulted = metrics(100, 0.99, 0, 0, 3);
+  faulted["lifetime"]["deaths"] = {{"battery", 0}, {"fault", 3}};
+  CHECK(run_warnings(faulted, 0.0).empty());
+  faulted["lifetime"]["deaths"]["battery"] = 2;
+  CHECK(run_warnings(faulted, 0.0) ==
+        std::vector<std::string>{"2 nodes ran out of battery during the run"});
   CHECK(run_warnings(metrics(0, 1.0, 0, 0, 0), 0.0) ==
         std::vector<std::string>{"no robot completed a protocol update during the run"});
   json none = metrics(0, 1.0, 0, 0, 0);
