@@ -142,7 +142,13 @@ void Recorder::sample() {
       tracking_.emplace(def_.output.tracking_radius > 0 ? def_.output.tracking_radius
                                                         : default_tracking_radius(area, n_robots));
     }
-    TrackingSample t = tracking_->sample(row.t_s, robots, world_.source_positions());
+    // A robot that is down tracks nothing: infinitely far, it is nobody's nearest robot.
+    std::vector<Vec2> tracking_robots = robots;
+    if (n_up < n_robots)
+      for (std::size_t i = 0; i < n_robots; ++i)
+        if (!world_.node_alive(world_.robot_node(i)))
+          tracking_robots[i] = Vec2::Constant(std::numeric_limits<double>::infinity());
+    TrackingSample t = tracking_->sample(row.t_s, tracking_robots, world_.source_positions());
     row.tracking_mean = t.error_mean;
     row.tracking_max = t.error_max;
     row.robots_per_target = std::move(t.group_sizes);
