@@ -77,12 +77,10 @@ class World::RobotAgent final : public protocols::RobotHost {
   NodeId id() const override { return world_.robot_node(index_); }
   Vec2 position() const override { return state().position; }
   std::uint32_t broadcast(double range, net::Payload payload) override {
-    const std::uint32_t bytes = net::size_bytes(payload, world_.radio_.params().sizes);
-    return world_.radio_.broadcast(id(), range, std::move(payload)) ? bytes : 0;
+    return world_.send(id(), sim::kNoNode, range, std::move(payload));
   }
   std::uint32_t unicast(NodeId to, net::Payload payload) override {
-    const std::uint32_t bytes = net::size_bytes(payload, world_.radio_.params().sizes);
-    return world_.radio_.unicast(id(), to, std::move(payload)) ? bytes : 0;
+    return world_.send(id(), to, 0.0, std::move(payload));
   }
   const net::MessageSizes& message_sizes() const override { return world_.radio_.params().sizes; }
   protocols::TimerHandle set_timer(sim::Duration delay, std::uint32_t kind) override {

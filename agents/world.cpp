@@ -41,12 +41,10 @@ class World::SensorContext final : public protocols::SensorHost {
   Vec2 position() const override { return world_.radio_.position(id()); }
   double reading() override { return world_.sensor_reading(sensor_, position()); }
   std::uint32_t broadcast(double range, net::Payload payload) override {
-    const std::uint32_t bytes = net::size_bytes(payload, world_.radio_.params().sizes);
-    return world_.radio_.broadcast(id(), range, std::move(payload)) ? bytes : 0;
+    return world_.send(id(), sim::kNoNode, range, std::move(payload));
   }
   std::uint32_t unicast(NodeId to, net::Payload payload) override {
-    const std::uint32_t bytes = net::size_bytes(payload, world_.radio_.params().sizes);
-    return world_.radio_.unicast(id(), to, std::move(payload)) ? bytes : 0;
+    return world_.send(id(), to, 0.0, std::move(payload));
   }
   const net::MessageSizes& message_sizes() const override { return world_.radio_.params().sizes; }
   void set_timer(sim::Duration delay, std::uint32_t kind) override {
@@ -138,6 +136,13 @@ void World::start() {
   if (b.senders == BeaconSenders::sensors || b.senders == BeaconSenders::all)
     for (std::size_t s = 0; s < def_.sensors.size(); ++s)
       schedule(sensor_node(s), sensor_key(s));
+}
+
+std::uint32_t World::send(NodeId from, NodeId to, double range, net::Payload payload) {
+  const std::uint32_t bytes = net::size_bytes(payload, radio_.params().sizes);
+  const bool sent = to == sim::kNoNode ? radio_.broadcast(from, range, std::move(payload))
+                                       : radio_.unicast(from, to, std::move(payload));
+  return sent ? bytes : 0;
 }
 
 void World::send_beacon(NodeId node) {

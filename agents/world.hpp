@@ -174,6 +174,9 @@ class World final : public net::RadioListener,
   /// The reading of `sensor`, which stands at `position` (passed: the caller has it at hand).
   double sensor_reading(std::size_t sensor, const Vec2& position);
   void sensor_timer(std::size_t sensor, std::uint32_t kind);
+  /// A host's send: a broadcast with `range` (`to` = kNoNode) or a unicast; its size in bytes,
+  /// 0 if the radio refused it.
+  std::uint32_t send(NodeId from, NodeId to, double range, net::Payload payload);
   void send_beacon(NodeId node);
   void pde_step();
   double spray_rate(std::size_t robot) const;
