@@ -294,6 +294,10 @@ OutputDef read_output(Section s, double duration_s, bool acoustic) {
   o.updates = s.boolean("updates", o.updates);
   o.figures = s.boolean("figures", o.figures);
   o.report = s.boolean("report", o.report);
+  o.replay = s.boolean("replay", o.replay);
+  // About 250 frames whatever the duration, never denser than the trajectories.
+  o.replay_period_s =
+      s.number("replay_period", std::max(o.trajectory_period_s, duration_s / 250.0), Range::time());
   if (!acoustic)
     s.reject("tracking_radius", "'tracking_radius' applies to field kind acoustic");
   else if (s.has("tracking_radius"))

@@ -23,6 +23,10 @@ struct OutputDef {
   bool updates = true;                ///< write updates.csv (one row per protocol update)
   bool figures = true;                ///< write figures/ (PNG and SVG)
   bool report = true;                 ///< write report.html
+  /// replay.json (the report's animated replay): a frame every replay_period_s seconds, by
+  /// default the larger of trajectory_period_s and duration / 250 (docs/live-and-replay.md).
+  bool replay = true;
+  double replay_period_s = 0.0;
   /// Acoustic runs: a robot is in a target's group within this distance of it, world units;
   /// 0 = √(area / (π · robots)), derived by the recorder (docs/outputs.md, "Tracking").
   double tracking_radius = 0.0;

@@ -61,6 +61,9 @@ void check_work(const ScenarioDef& def, std::size_t sensor_count, const NodeCaps
         {"motion substeps", duration / motion.substep_s * robots, &at.robots, "substep"});
   work.push_back({"trajectory rows", duration / def.output.trajectory_period_s * robots, &at.output,
                   "trajectory_period"});
+  if (def.output.replay)
+    work.push_back({"replay frames", duration / def.output.replay_period_s * (robots + 1),
+                    &at.output, "replay_period"});
   const agents::FieldDef& field = def.world.field;
   Section diffusion = at.field.peek("diffusion");
   if (field.kind == agents::FieldKind::diffusion) {

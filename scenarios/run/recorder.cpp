@@ -260,6 +260,7 @@ void Recorder::on_update(std::size_t robot, const protocols::UpdateRecord& recor
   correct_heard_updates_ += row.correct_heard ? 1 : 0;
   if (!def_.output.updates) row.record.cell.vertices.clear();  // keep memory small
   updates_.push_back(std::move(row));
+  if (update_listener_) update_listener_();
 }
 
 void Recorder::on_battery_empty(sim::NodeId node) {

@@ -4,6 +4,7 @@
 // trajectories and snapshots. Sampling runs between `run_until` chunks, not as events, so
 // what is recorded never changes the event stream or its fingerprint.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -56,6 +57,10 @@ class Recorder final : public agents::WorldObserver {
   void snapshot();             ///< the state for a snapshot figure
 
   void on_update(std::size_t robot, const protocols::UpdateRecord& record) override;
+  /// Called after each update is recorded (the live viewer's "one update at a time").
+  void set_update_listener(std::function<void()> listener) {
+    update_listener_ = std::move(listener);
+  }
   void on_battery_empty(sim::NodeId node) override;
   void on_node_down(sim::NodeId node, agents::DownCause cause) override;
   void on_node_up(sim::NodeId node) override;
@@ -106,6 +111,7 @@ class Recorder final : public agents::WorldObserver {
   bool has_baseline_ = false;
   LifetimeLog lifetime_;
   bool has_twin_ = false;
+  std::function<void()> update_listener_;
 };
 
 }  // namespace masnet::scenarios

@@ -37,19 +37,24 @@ namespace {
 constexpr std::uint64_t kProgressEveryEvents = 4096;
 }  // namespace
 
-void Run::execute(const ProgressFn& progress) {
+void Run::execute(const ProgressFn& progress, RunWatcher* watcher) {
   const auto wall_start = std::chrono::steady_clock::now();
   world_->start();
-  // Checkpoints on integer grids of each period (no accumulated rounding): the recorder
-  // observes between run_until chunks, never as an event.
+  // Checkpoints on integer grids of each period (no accumulated rounding): the recorder, the
+  // replay and a watcher observe between run_until chunks, never as an event.
   const sim::Time end = sim::time_at(def_.duration_s);
   const sim::Duration sample = sim::seconds(def_.output.sample_period_s);
   const sim::Duration trajectory = sim::seconds(def_.output.trajectory_period_s);
+  const bool replay = def_.output.replay;
+  const sim::Duration replay_period = sim::seconds(def_.output.replay_period_s);
+  const sim::Duration frame_period =
+      watcher ? sim::seconds(watcher->frame_period_s()) : sim::Duration{};
+  if (replay || watcher) scene_ = std::make_unique<SceneCapture>(*world_, def_);
   std::vector<sim::Time> snapshots;
   for (double t : def_.output.snapshots)
     snapshots.push_back(sim::time_at(t));
   std::sort(snapshots.begin(), snapshots.end());
-  std::int64_t next_sample = 0, next_trajectory = 0;
+  std::int64_t next_sample = 0, next_trajectory = 0, next_replay = 0, next_frame = 0;
   std::size_t next_snapshot = 0;
   // Between checkpoints too (a large run may spend seconds of wall time in one chunk): the
   // kernel calls back every few thousand events, and the callee decides from the wall clock
@@ -59,12 +64,34 @@ void Run::execute(const ProgressFn& progress) {
                                   [&progress](sim::Time now, std::uint64_t events) {
                                     progress(sim::to_seconds(now), events);
                                   });
+  bool stopped_after_update = false;
+  if (watcher) {
+    watcher->on_start(scene_->header());
+    recorder_->set_update_listener([&] {
+      if (watcher->stop_after_update()) {
+        stopped_after_update = true;
+        simulator_->stop();
+      }
+    });
+  }
+  const auto latest_sample = [this] {
+    return recorder_->samples().empty() ? nullptr : &recorder_->samples().back();
+  };
   for (;;) {
     const sim::Time t_sample = sim::kTimeZero + next_sample * sample;
     const sim::Time t_trajectory = sim::kTimeZero + next_trajectory * trajectory;
-    sim::Time next = std::min({t_sample, t_trajectory, end});
+    const sim::Time t_replay = replay ? sim::kTimeZero + next_replay * replay_period : end;
+    const sim::Time t_frame = watcher ? sim::kTimeZero + next_frame * frame_period : end;
+    sim::Time next = std::min({t_sample, t_trajectory, t_replay, t_frame, end});
     if (next_snapshot < snapshots.size()) next = std::min(next, snapshots[next_snapshot]);
     simulator_->run_until(next);
+    if (stopped_after_update) {
+      // Stopped inside the chunk, possibly with more events at this very time: show the frame,
+      // then finish the chunk as if nothing had happened.
+      stopped_after_update = false;
+      watcher->on_frame(scene_->frame(latest_sample()));
+      continue;
+    }
     if (t_sample == next) {
       recorder_->sample();
       ++next_sample;
@@ -77,6 +104,14 @@ void Run::execute(const ProgressFn& progress) {
       recorder_->snapshot();
       ++next_snapshot;
     }
+    if (replay && t_replay == next) {
+      replay_frames_.push_back(scene_->frame(latest_sample()).dump());
+      ++next_replay;
+    }
+    if (watcher && t_frame == next) {
+      watcher->on_frame(scene_->frame(latest_sample()));
+      ++next_frame;
+    }
     if (progress) progress(sim::to_seconds(next), simulator_->events_run());
     if (next == end) break;
   }
@@ -84,6 +119,10 @@ void Run::execute(const ProgressFn& progress) {
   // The final state is always sampled, whatever the period.
   if (recorder_->samples().empty() || recorder_->samples().back().t_s != def_.duration_s)
     recorder_->sample();
+  if (watcher) {
+    recorder_->set_update_listener(nullptr);
+    watcher->on_end(scene_->frame(latest_sample()));
+  }
   traffic_fingerprint_ =
       world_->radio().traffic_fingerprint().hex();  // a pass over every node: once
   if (def_.baseline && def_.world.dispenser.enabled) {
@@ -93,6 +132,7 @@ void Run::execute(const ProgressFn& progress) {
     twin.world.dispenser.enabled = false;
     twin.baseline = false;
     twin.output.snapshots.clear();
+    twin.output.replay = false;
     Run baseline(twin);
     sim::Log(*simulator_)
         .info("the baseline twin (no dispensers) runs now; its clock starts again at 0");
@@ -112,6 +152,7 @@ void Run::run_fault_free_twin() {
   twin.world.faults.clear();
   twin.baseline = false;
   twin.output.snapshots.clear();
+  twin.output.replay = false;
   Run fault_free(twin);
   sim::Log(*simulator_).info("the fault-free twin runs now; its clock starts again at 0");
   fault_free.execute();
@@ -157,6 +198,17 @@ void Run::write_files(const std::string& dir) const {
   recorder_->write_trajectories((d / "trajectories.csv").string());
   if (def_.output.updates) recorder_->write_updates((d / "updates.csv").string());
   recorder_->write_snapshots((d / "snapshots.json").string());
+  if (def_.output.replay && scene_) write_replay((d / "replay.json").string());
+}
+
+void Run::write_replay(const std::string& path) const {
+  // One frame a line: the file stays readable and a reader can stream it.
+  OutputFile out(path);
+  out.write("{\"header\": " + scene_->header().dump() + ",\n\"frames\": [\n");
+  for (std::size_t i = 0; i < replay_frames_.size(); ++i)
+    out.write(replay_frames_[i] + (i + 1 < replay_frames_.size() ? ",\n" : "\n"));
+  out.write("]}\n");
+  out.close();
 }
 
 std::string run_key(const ScenarioDef& def) {

@@ -10,6 +10,8 @@
 
 #include "scenarios/loader/scenario.hpp"
 #include "scenarios/run/recorder.hpp"
+#include "scenarios/run/run_watcher.hpp"
+#include "scenarios/run/scene_capture.hpp"
 
 namespace masnet::scenarios {
 
@@ -21,13 +23,14 @@ class Run {
   explicit Run(ScenarioDef def);
   ~Run();
 
-  /// Simulates the whole duration.
-  void execute(const ProgressFn& progress = {});
+  /// Simulates the whole duration; `watcher` (may be null) sees it as it happens.
+  void execute(const ProgressFn& progress = {}, RunWatcher* watcher = nullptr);
 
   /// summary.json: the keys of docs/outputs.md.
   nlohmann::json summary() const;
   /// Writes summary.json, nodes.csv, timeseries.csv, trajectories.csv, updates.csv and
-  /// snapshots.json into the existing directory `dir`.
+  /// snapshots.json (and replay.json unless output.replay is off) into the existing directory
+  /// `dir`.
   void write_files(const std::string& dir) const;
 
   const Recorder& recorder() const { return *recorder_; }
@@ -39,6 +42,7 @@ class Run {
   double wall_time_s() const { return wall_time_s_; }
 
  private:
+  void write_replay(const std::string& path) const;
   /// Runs the scenario again without its faults and attaches that twin's curves.
   void run_fault_free_twin();
 
@@ -46,6 +50,8 @@ class Run {
   std::unique_ptr<sim::Simulator> simulator_;
   std::unique_ptr<agents::World> world_;
   std::unique_ptr<Recorder> recorder_;
+  std::unique_ptr<SceneCapture> scene_;
+  std::vector<std::string> replay_frames_;  // serialised: a run may hold thousands
   double wall_time_s_ = 0.0;
   std::string baseline_fingerprint_;
   nlohmann::json twin_;  // runs with faults: the fault-free twin's figures
