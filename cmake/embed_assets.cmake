@@ -6,12 +6,15 @@ set(MASNET_EMBED_SCRIPT ${CMAKE_CURRENT_LIST_DIR}/embed_assets_write.cmake)
 
 function(masnet_embed_assets target header namespace)
   set(out ${CMAKE_CURRENT_BINARY_DIR}/embedded/${header})
+  # A ';' would split the command line: the script gets the files joined with '|'.
+  string(JOIN "|" files ${ARGN})
   add_custom_command(
     OUTPUT ${out}
-    COMMAND ${CMAKE_COMMAND} -DOUT=${out} -DNAMESPACE=${namespace} "-DFILES=${ARGN}" -P
+    COMMAND ${CMAKE_COMMAND} -DOUT=${out} -DNAMESPACE=${namespace} -DFILES=${files} -P
             ${MASNET_EMBED_SCRIPT}
     DEPENDS ${ARGN} ${MASNET_EMBED_SCRIPT}
-    COMMENT "Embedding ${header}")
+    COMMENT "Embedding ${header}"
+    VERBATIM)
   target_sources(${target} PRIVATE ${out})
   target_include_directories(${target} PRIVATE ${CMAKE_CURRENT_BINARY_DIR}/embedded)
 endfunction()

@@ -1,5 +1,6 @@
 # Script mode (cmake -P) for masnet_embed_assets: writes OUT from FILES. Raw string literals are
 # split every 60000 characters: compilers only promise 65536 characters per literal.
+string(REPLACE "|" ";" FILES "${FILES}")
 set(text "#pragma once\n// Generated from web assets by cmake/embed_assets.cmake: do not edit.\n")
 string(APPEND text "#include <string_view>\n\nnamespace ${NAMESPACE} {\n")
 foreach(file IN LISTS FILES)

@@ -104,6 +104,7 @@ CLI::App* add_run_subcommand(CLI::App& app, RunArgs& args) {
       ->default_str("warn");
   run->add_option("--log-file", args.log_file,
                   "write the log to this file (appended to) instead of stderr");
+  add_serve_options(*run, args.serve);
 
   return run;
 }
@@ -136,6 +137,13 @@ int run_run_command(const RunArgs& args) {
   // A lone run may use a second core for the radio's overhearing bookkeeping (the same results;
   // sweeps keep their cores for whole runs) when the process may run on two processors: pinned
   // to one (taskset, a cpuset), the two threads would only take turns.
+  // Bound before anything is simulated: a taken port must not cost a run.
+  std::unique_ptr<LiveSession> live;
+  if (args.serve.serve) {
+    int exit_code = kInternalError;
+    live = start_live_session(args.serve, exit_code);
+    if (!live) return exit_code;
+  }
   ScenarioDef run_def = def;
   run_def.world.radio.overhearing_thread = overhearing_thread_wanted();
   Run run(run_def);
@@ -143,7 +151,8 @@ int run_run_command(const RunArgs& args) {
     // Log lines on the terminal would break into the progress line: one or the other.
     ProgressBar bar(def.duration_s,
                     !args.quiet && !logging.shows_on_terminal && ProgressBar::stderr_is_terminal());
-    run.execute([&](double t, std::uint64_t events) { bar.update(t, events); });
+    run.execute([&](double t, std::uint64_t events) { bar.update(t, events); },
+                live ? &live->watcher() : nullptr);
   }
   // Figures and report are drawn into the staging folder too, so the published directory is
   // complete or absent. A drawing failure that is not a write failure keeps the run's data
@@ -203,6 +212,7 @@ int run_run_command(const RunArgs& args) {
   }
   if (!args.quiet && !report.empty())
     std::printf("report: %s\n", (normalised_directory(out) / report).string().c_str());
+  if (live) live->serve_until_interrupted();
   return 0;
 }
 

@@ -1,9 +1,12 @@
 #pragma once
 // `masnet run SCENARIO [--out DIR] [--seed N] [--set KEY=VALUE]... [--force] [--quiet]
-// [--baseline] [--log-level LEVEL] [--log-file FILE]`: one run, its run directory published
-// whole (data, figures, report) or not at all (docs/outputs.md).
+// [--baseline] [--log-level LEVEL] [--log-file FILE] [--serve ...]`: one run, its run directory
+// published whole (data, figures, report) or not at all (docs/outputs.md), optionally watched
+// live (docs/live-and-replay.md).
 #include <string>
 #include <vector>
+
+#include "scenarios/cli/serve_option.hpp"
 
 namespace CLI {
 class App;
@@ -22,6 +25,7 @@ struct RunArgs {
   bool baseline = false;
   std::string log_level = "warn";
   std::string log_file;
+  ServeArgs serve;
 };
 
 /// Adds the `run` subcommand to `app`, filling `args`; returns it (test `*sub` after parse).
