@@ -21,7 +21,7 @@ struct OutputDef {
   double trajectory_period_s = 0.02;  ///< trajectories.csv rows
   std::vector<double> snapshots;      ///< times of the snapshot figures, seconds
   bool updates = true;                ///< write updates.csv (one row per protocol update)
-  bool figures = true;                ///< write figures/ (PNG and SVG)
+  bool figures = true;                ///< write figures/ (PNG, SVG and PDF)
   bool report = true;                 ///< write report.html
   /// Acoustic runs: a robot is in a target's group within this distance of it, world units;
   /// 0 = √(area / (π · robots)), derived by the recorder (docs/outputs.md, "Tracking").
