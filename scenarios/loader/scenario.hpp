@@ -21,7 +21,7 @@ struct OutputDef {
   double trajectory_period_s = 0.02;  ///< trajectories.csv rows
   std::vector<double> snapshots;      ///< times of the snapshot figures, seconds
   bool updates = true;                ///< write updates.csv (one row per protocol update)
-  bool figures = true;                ///< write figures/ (PNG and SVG)
+  bool figures = true;                ///< write figures/ (PNG, SVG and PDF)
   bool report = true;                 ///< write report.html
   /// replay.json (the report's animated replay): a frame every replay_period_s seconds, by
   /// default the larger of trajectory_period_s and duration / 250 (docs/live-and-replay.md).

@@ -1,5 +1,6 @@
-// The figures of runs with faults or batteries (docs/outputs.md): radio energy per node on a
-// map, nodes up over time, and the run beside its fault-free twin, with the faults' times.
+// The map of the radio energy each node spent (every run with nodes.csv), and the figures of runs
+// with faults or batteries (docs/outputs.md): nodes up over time, and the run beside its
+// fault-free twin, with the faults' times.
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -89,11 +90,17 @@ void twin_panel(cairo_t* cr, Box box, const RunData& run, const std::string& col
 
 }  // namespace
 
+bool has_energy_map(const RunData& run) {
+  const Table& nodes = run.nodes;
+  return nodes.rows() > 0 && nodes.has("x") && nodes.has("y") && nodes.has("role") &&
+         nodes.has("energy_j");
+}
+
 void draw_energy_map(cairo_t* cr, const RunData& run) {
   const Table& nodes = run.nodes;
   std::vector<Point> sensors, dead_sensors, robots, dead_robots;
   std::vector<double> energy;
-  if (nodes.has("x") && nodes.has("y") && nodes.has("role") && nodes.has("energy_j")) {
+  if (has_energy_map(run)) {
     const auto &x = nodes.column("x"), &y = nodes.column("y"), &e = nodes.column("energy_j");
     const auto& alive = column_or_empty(nodes, "alive");
     const auto& role = nodes.text("role");
@@ -112,6 +119,9 @@ void draw_energy_map(cairo_t* cr, const RunData& run) {
   const auto [lo, hi] = plot::data_range({&energy}, 0.0);
   // Many sensors down: blank cells rather than a cross each (a million crosses is no figure).
   const bool blank_dead = dead_sensors.size() > kMaxCrosses;
+  // Nodes go down only in runs with faults or batteries; elsewhere "down (0)" would be noise.
+  const bool down_entries =
+      run.summary.contains("lifetime") || !dead_sensors.empty() || !dead_robots.empty();
   if (blank_dead)
     for (std::size_t i = 0, k = 0; i < nodes.rows(); ++i)
       if (nodes.text("role")[i] != "robot") {
@@ -120,7 +130,7 @@ void draw_energy_map(cairo_t* cr, const RunData& run) {
       }
   colours.lo = std::min(lo, 0.0);
   colours.hi = hi > colours.lo ? hi : colours.lo + 1.0;
-  Axes axes = map_axes(cr, {70, 50, 470, 470}, run);
+  Axes axes = map_axes(cr, run);
   axes.clip();
   clip_to_domain(cr, axes, run.domain);
   axes.heat_map(sensor_raster(sensors, energy, run.domain), colours);
@@ -132,12 +142,13 @@ void draw_energy_map(cairo_t* cr, const RunData& run) {
     axes.add_legend_entry(fmt::format("sensor down at the end ({}): blank", dead_sensors.size()),
                           Style{kGrey, 1.0});
   else
-    axes.markers(dead_sensors, Marker::cross, 6, kBlack, kBlack,
-                 fmt::format("sensor down at the end ({})", dead_sensors.size()));
+    axes.markers(
+        dead_sensors, Marker::cross, 6, kBlack, kBlack,
+        down_entries ? fmt::format("sensor down at the end ({})", dead_sensors.size()) : "");
   axes.markers(robots, Marker::dot, 10, kRobot, kWhite, fmt::format("robot ({})", robots.size()));
   axes.markers(dead_robots, Marker::dot, 10, kGrey, kWhite, "");
   axes.markers(dead_robots, Marker::cross, 12, kStrike, kStrike,
-               fmt::format("robot down at the end ({})", dead_robots.size()));
+               down_entries ? fmt::format("robot down at the end ({})", dead_robots.size()) : "");
   axes.unclip();
   axes.legend(Placement::below);
   axes.title(fmt::format("{}: radio energy per sensor at t = {} s", run.name,

@@ -5,6 +5,7 @@
 #include <limits>
 #include <map>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -29,16 +30,27 @@ std::map<std::size_t, std::vector<std::size_t>> rows_by_robot(const Table& t);
 
 // Maps of Ω (figures.cpp).
 /// Sensor values as a raster: one cell per sensor for grid layouts, else each pixel of a
-/// 160 × 160 raster takes its nearest sensor's value.
+/// raster of square pixels over Ω's bounding box, 160 along its long side, takes its nearest
+/// sensor's value.
 plot::Raster sensor_raster(const std::vector<plot::Point>& sensors,
                            const std::vector<double>& values,
                            const std::vector<plot::Point>& domain);
-/// Axes over Ω with equal aspect and a small margin.
-plot::Axes map_axes(cairo_t* cr, plot::Box box, const RunData& run);
+/// The box of a map's axes: Ω's aspect ratio with the long side 470 px (a unit square gets
+/// 470 × 470), no narrower than 360 px nor lower than 160 px so that the title, legend and
+/// colour bar keep their room (a longer Ω is drawn smaller inside it).
+plot::Box map_box(const RunData& run);
+/// Width and height of a map figure: the box, the axis labels left of it, the title above, the
+/// colour bar right of it and `below_px` under it for the x label and the legend.
+std::pair<double, double> map_figure_size(const RunData& run, double below_px);
+/// Axes over Ω in map_box with equal aspect and a small margin.
+plot::Axes map_axes(cairo_t* cr, const RunData& run);
 /// Clips to Ω (inside an Axes::clip).
 void clip_to_domain(cairo_t* cr, const plot::Axes& axes, const std::vector<plot::Point>& domain);
 
-// Faults and lifetime (fault_figures.cpp): runs whose summary.json has `lifetime`.
+// Energy, faults and lifetime (fault_figures.cpp): the energy map for every run with nodes.csv,
+// the others for runs whose summary.json has `lifetime`.
+/// Whether nodes.csv has the nodes' positions, roles and energy, and at least one node.
+bool has_energy_map(const RunData& run);
 /// Sensors coloured by their radio energy, robots marked, nodes down at the end crossed.
 void draw_energy_map(cairo_t* cr, const RunData& run);
 /// Sensors and robots up over time, the faults' times marked.

@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "scenarios/output/output_file.hpp"
+#include "scenarios/report/fault_tables.hpp"
 #include "scenarios/report/figure_parts.hpp"
 #include "scenarios/report/target_paths.hpp"
 
@@ -146,35 +147,58 @@ plot::Raster sensor_raster(const std::vector<Point>& sensors, const std::vector<
       return r;
     }
   }
-  constexpr std::size_t kPixels = 160;
-  r.nx = r.ny = kPixels;
+  constexpr double kLongPixels = 160;
+  const double aspect = (b.x1 - b.x0) / (b.y1 - b.y0);
+  r.nx = static_cast<std::size_t>(aspect >= 1 ? kLongPixels
+                                              : std::max(1.0, std::round(kLongPixels * aspect)));
+  r.ny = static_cast<std::size_t>(aspect >= 1 ? std::max(1.0, std::round(kLongPixels / aspect))
+                                              : kLongPixels);
   r.x0 = b.x0;
   r.y0 = b.y0;
   r.x1 = b.x1;
   r.y1 = b.y1;
-  r.values.assign(kPixels * kPixels, kNaN);
-  for (std::size_t j = 0; j < kPixels; ++j)
-    for (std::size_t i = 0; i < kPixels; ++i) {
-      const double x = b.x0 + (static_cast<double>(i) + 0.5) / kPixels * (b.x1 - b.x0);
-      const double y = b.y0 + (static_cast<double>(j) + 0.5) / kPixels * (b.y1 - b.y0);
+  r.values.assign(r.nx * r.ny, kNaN);
+  const double nx = static_cast<double>(r.nx), ny = static_cast<double>(r.ny);
+  for (std::size_t j = 0; j < r.ny; ++j)
+    for (std::size_t i = 0; i < r.nx; ++i) {
+      const double x = b.x0 + (static_cast<double>(i) + 0.5) / nx * (b.x1 - b.x0);
+      const double y = b.y0 + (static_cast<double>(j) + 0.5) / ny * (b.y1 - b.y0);
       double best = 1e300;
       for (std::size_t s = 0; s < sensors.size(); ++s) {
         const double d =
             (sensors[s].x - x) * (sensors[s].x - x) + (sensors[s].y - y) * (sensors[s].y - y);
         if (d < best) {
           best = d;
-          r.values[j * kPixels + i] = values[s];
+          r.values[j * r.nx + i] = values[s];
         }
       }
     }
   return r;
 }
 
+// The margins of a map figure around its box (the unit square's figure is 680 × 600 px).
+constexpr double kMapLongPx = 470, kMapLeftPx = 70, kMapTopPx = 50, kMapRightPx = 140;
+constexpr double kMapMinWidthPx = 360, kMapMinHeightPx = 160;
+
+Box map_box(const RunData& run) {
+  const Bounds b = bounds(run.domain);
+  const double aspect = (b.x1 - b.x0) / (b.y1 - b.y0);
+  // Whole pixels, so that the PNG is exactly as large as the SVG and PDF say.
+  const double w = aspect >= 1 ? kMapLongPx : std::round(kMapLongPx * aspect);
+  const double h = aspect >= 1 ? std::round(kMapLongPx / aspect) : kMapLongPx;
+  return {kMapLeftPx, kMapTopPx, std::max(w, kMapMinWidthPx), std::max(h, kMapMinHeightPx)};
+}
+
+std::pair<double, double> map_figure_size(const RunData& run, double below_px) {
+  const Box box = map_box(run);
+  return {box.x + box.w + kMapRightPx, box.y + box.h + below_px};
+}
+
 // A map of Ω: equal aspect, a small margin around the domain.
-Axes map_axes(cairo_t* cr, Box box, const RunData& run) {
+Axes map_axes(cairo_t* cr, const RunData& run) {
   const Bounds b = bounds(run.domain);
   const double mx = 0.02 * (b.x1 - b.x0), my = 0.02 * (b.y1 - b.y0);
-  Axes axes(cr, box);
+  Axes axes(cr, map_box(run));
   axes.x_range(b.x0 - mx, b.x1 + mx).y_range(b.y0 - my, b.y1 + my).equal_aspect();
   return axes;
 }
@@ -270,7 +294,7 @@ std::string colour_label(const RunData& run, const plot::ColourScale& c, bool pd
 void draw_snapshot(cairo_t* cr, const RunData& run, const json& snap,
                    const plot::ColourScale& colours, const FigureOptions& options,
                    bool field_only) {
-  Axes axes = map_axes(cr, {70, 50, 470, 470}, run);
+  Axes axes = map_axes(cr, run);
   const double t = snap.value("t", 0.0);
   std::vector<double> readings;
   for (const json& v : snap.value("readings", json::array()))
@@ -364,7 +388,7 @@ std::vector<std::vector<Point>> source_paths(const RunData& run) {
 }
 
 void draw_trajectories(cairo_t* cr, const RunData& run) {
-  Axes axes = map_axes(cr, {70, 50, 470, 470}, run);
+  Axes axes = map_axes(cr, run);
   axes.decorate("x (world units)", "y (world units)");
   axes.polygon(run.domain, Style{kBlack, 1.2});
   axes.clip();
@@ -439,6 +463,8 @@ std::vector<FigureInfo> write_figures(const RunData& run, const fs::path& figure
     figures.push_back(std::move(info));
   };
 
+  // Maps take Ω's aspect ratio; the curves keep their sizes.
+  const auto [map_w, map_h] = map_figure_size(run, 80);
   const plot::ColourScale colours = snapshot_colours(run, false);
   const bool pde_maps = std::any_of(run.snapshots.begin(), run.snapshots.end(),
                                     [](const json& s) { return !pde_raster(s).values.empty(); });
@@ -452,14 +478,14 @@ std::vector<FigureInfo> write_figures(const RunData& run, const fs::path& figure
              "Sensor readings, the robots' Voronoi cells{}, robots, centroids and {}s at t = {} s.",
              options.oracle_cells ? " (oracle's dashed)" : "", source_word(run), label),
          t},
-        680, 600, [&](cairo_t* cr) { draw_snapshot(cr, run, snap, colours, options, false); },
+        map_w, map_h, [&](cairo_t* cr) { draw_snapshot(cr, run, snap, colours, options, false); },
         snapshot_svg_classes());
     if (is_diffusion(run))
       add({"field_t" + label, "field",
            fmt::format("The pollution field u{} with the robots and sources at t = {} s.",
                        pde_maps ? " on the PDE grid" : " at the sensors", label),
            t},
-          680, 600, [&](cairo_t* cr) {
+          map_w, map_h, [&](cairo_t* cr) {
             draw_snapshot(cr, run, snap, pde_maps ? field_colours : colours, options, true);
           });
   }
@@ -467,7 +493,7 @@ std::vector<FigureInfo> write_figures(const RunData& run, const fs::path& figure
        fmt::format(
            "Robot paths over the whole run and the {} paths (bold) with their direction of motion.",
            source_word(run))},
-      680, 600, [&](cairo_t* cr) { draw_trajectories(cr, run); });
+      map_w, map_h, [&](cairo_t* cr) { draw_trajectories(cr, run); });
   add({"coverage_cost", "curve",
        "Coverage cost H and the robots' distance to their true cell centroids over time."},
       760, 560, [&](cairo_t* cr) { draw_coverage(cr, run); });
@@ -495,11 +521,18 @@ std::vector<FigureInfo> write_figures(const RunData& run, const fs::path& figure
     add({"collisions", "curve",
          "Receptions lost to overlapping frames: so far, and per second of each sample period."},
         760, 560, [&](cairo_t* cr) { draw_collisions(cr, run); });
+  // Every run with nodes.csv; kind "fault" where the report has a lifetime section, which then
+  // shows it with the other figures of faults and batteries.
+  if (has_energy_map(run)) {
+    const auto [energy_w, energy_h] = map_figure_size(run, 120);
+    const bool faults = has_lifetime_section(run.summary);
+    add({"energy_map", faults ? "fault" : "map",
+         faults ? "Radio energy each sensor spent, the robots, and the nodes down at the end "
+                  "(crossed)."
+                : "Radio energy each sensor spent over the run, and the robots at the end."},
+        energy_w, energy_h, [&](cairo_t* cr) { draw_energy_map(cr, run); });
+  }
   // Runs with faults or batteries (kind "fault": the report shows them with the lifetime).
-  if (run.summary.contains("lifetime"))
-    add({"energy_map", "fault",
-         "Radio energy each sensor spent, the robots, and the nodes down at the end (crossed)."},
-        680, 640, [&](cairo_t* cr) { draw_energy_map(cr, run); });
   if (run.timeseries.has("alive_sensors"))
     add({"alive_nodes", "fault", "Sensors and robots up over time, with the faults' times."}, 760,
         560, [&](cairo_t* cr) { draw_alive_nodes(cr, run); });

@@ -19,16 +19,18 @@ struct FigureOptions {
   bool radius_circles = false;  ///< each robot's radius R_i as a circle
 };
 
-/// A figure written as figures/<stem>.png and figures/<stem>.svg.
+/// A figure written as figures/<stem>.png, figures/<stem>.svg and figures/<stem>.pdf.
 struct FigureInfo {
   std::string stem;
-  std::string kind;     ///< snapshot, field, trajectories, curve or fault
+  std::string kind;     ///< snapshot, field, trajectories, curve, map (the energy map of a run
+                        ///< without faults or batteries) or fault
   std::string caption;  ///< one sentence for the report
   double t_s = std::numeric_limits<double>::quiet_NaN();  ///< snapshot and field figures
 };
 
 /// Replaces `figures_dir` with every figure the run's data allow, and lists them in a stable
-/// order: snapshots (and field maps) by time, trajectories, then the curves.
+/// order: snapshots (and field maps) by time, trajectories, the curves, then the energy map
+/// and the figures of faults. Maps take Ω's aspect ratio (docs/outputs.md, "Sizes").
 std::vector<FigureInfo> write_figures(const RunData& run, const std::filesystem::path& figures_dir,
                                       const FigureOptions& options = {});
 

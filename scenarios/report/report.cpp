@@ -120,8 +120,9 @@ std::string figure_uri(const fs::path& figures_dir, const std::string& stem) {
 std::string image(const fs::path& figures_dir, const FigureInfo& f) {
   const std::string uri = figure_uri(figures_dir, f.stem);
   if (uri.empty()) return "<p class=\"note\">missing figure " + escape_html(f.stem) + "</p>\n";
-  return fmt::format("<img src=\"{}\" alt=\"{}\" title=\"figures/{}.svg, figures/{}.png\">\n", uri,
-                     escape_html(f.caption), escape_html(f.stem), escape_html(f.stem));
+  return fmt::format(
+      "<img src=\"{0}\" alt=\"{1}\" title=\"figures/{2}.svg, figures/{2}.png, figures/{2}.pdf\">\n",
+      uri, escape_html(f.caption), escape_html(f.stem));
 }
 
 // Interactive charts: which time-series columns each one shows (only existing columns).
@@ -533,7 +534,7 @@ fs::path write_report(const RunData& run, const std::vector<FigureInfo>& figures
     any = true;
     h << "<figure id=\"figure-" << escape_html(f.stem) << "\">\n"
       << image(figures_dir, f) << "<figcaption>" << escape_html(f.caption) << " (figures/"
-      << escape_html(f.stem) << ".png, .svg)</figcaption>\n</figure>\n";
+      << escape_html(f.stem) << ".png, .svg, .pdf)</figcaption>\n</figure>\n";
   }
   if (!any)
     h << "<p class=\"note\">Figures are off for this run (<code>output.figures: "

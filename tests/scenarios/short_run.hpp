@@ -17,7 +17,8 @@ struct ShortRun {
   std::filesystem::path base, dir;
   int status = -1;
   std::string output;  // what the command printed, both streams
-  explicit ShortRun(const std::string& tag) {
+  /// `extra`: more command-line arguments, e.g. "--set 'domain.rectangle=[0,0,2,1]'".
+  explicit ShortRun(const std::string& tag, const std::string& extra = {}) {
     namespace fs = std::filesystem;
     base = fs::temp_directory_path() / fmt::format("masnet-test-{}-{}", tag, ::getpid());
     fs::remove_all(base);
@@ -25,8 +26,8 @@ struct ShortRun {
     dir = base / "run";
     const std::string command = fmt::format(
         "'{}/scenarios/masnet' run '{}/scenarios/paper/acoustic_tracking.yaml' --out '{}' --set "
-        "duration=1 --set 'output.snapshots=[0.5,1]' > '{}' 2>&1",
-        MASNET_BINARY_DIR, MASNET_SOURCE_DIR, dir.string(), (base / "output.txt").string());
+        "duration=1 --set 'output.snapshots=[0.5,1]' {} > '{}' 2>&1",
+        MASNET_BINARY_DIR, MASNET_SOURCE_DIR, dir.string(), extra, (base / "output.txt").string());
     status = std::system(command.c_str());
     output = slurp(base / "output.txt");
   }

@@ -1,8 +1,8 @@
 #pragma once
 // A tiny plotting layer over Cairo for the run's figures: axes with ticks and labels,
 // polyline series, markers, bars, histograms, heat maps, a colour bar and a legend. Every
-// figure is drawn twice by the same function, once on an SVG surface and once on a PNG one,
-// so both files always show the same picture. Coordinates: `Box` is in pixels (y down);
+// figure is drawn by the same function on an SVG, a PNG and a PDF surface, so all three files
+// always show the same picture. Coordinates: `Box` is in pixels (y down);
 // data go through `Axes::px`/`Axes::py`.
 #include <cstddef>
 #include <filesystem>
@@ -167,9 +167,10 @@ struct SvgClass {
 /// Stores a file's bytes: the caller's writer, which throws when the file cannot be written.
 using FileWriter = std::function<void(const std::filesystem::path&, std::string_view)>;
 
-/// Writes `stem`.svg and `stem`.png of `width` × `height` pixels through `write` by calling
-/// `draw` twice (the PNG at `png_scale` device pixels per pixel). The SVG's generated ids are
-/// renumbered so that the same drawing gives byte-identical files in any process. Throws
+/// Writes `stem`.svg, `stem`.png and `stem`.pdf of `width` × `height` pixels through `write`
+/// by calling `draw` three times (the PNG at `png_scale` device pixels per pixel, the PDF at
+/// one point per pixel). The SVG's generated ids are renumbered and the PDF carries no
+/// creation date, so that the same drawing gives byte-identical files in any process. Throws
 /// std::runtime_error when Cairo fails, and whatever `write` throws.
 void write_figure(const FileWriter& write, const std::filesystem::path& stem, double width,
                   double height, const std::function<void(cairo_t*)>& draw,

@@ -1,10 +1,11 @@
-// A figure drawn twice, into an SVG and a PNG, whose bytes go to the caller's writer; the SVG
-// made reproducible (renumbered ids) and its reserved strokes given classes.
+// A figure drawn three times, into an SVG, a PNG and a PDF, whose bytes go to the caller's
+// writer; the SVG made reproducible (renumbered ids) and its reserved strokes given classes.
 #include <cmath>
 #include <cstdint>
 #include <map>
 #include <string_view>
 
+#include <cairo-pdf.h>
 #include <cairo-svg.h>
 #include <cairo.h>
 #include <fmt/format.h>
@@ -108,6 +109,29 @@ std::string finish_svg(std::string svg, const std::vector<SvgClass>& classes) {
   return tagged;
 }
 
+namespace {
+
+// Draws on a vector surface made by `create` (which streams into `bytes`) and finishes it;
+// throws when Cairo fails.
+std::string vector_figure(const std::function<cairo_surface_t*(std::string*)>& create,
+                          const std::function<void(cairo_t*)>& paint,
+                          const std::filesystem::path& path) {
+  std::string bytes;
+  cairo_surface_t* surface = create(&bytes);
+  cairo_t* cr = cairo_create(surface);
+  paint(cr);
+  const cairo_status_t drawn = cairo_status(cr);
+  cairo_destroy(cr);
+  cairo_surface_finish(surface);
+  const cairo_status_t finished = cairo_surface_status(surface);
+  cairo_surface_destroy(surface);
+  check(drawn, path);
+  check(finished, path);
+  return bytes;
+}
+
+}  // namespace
+
 void write_figure(const FileWriter& write, const std::filesystem::path& stem, double width,
                   double height, const std::function<void(cairo_t*)>& draw,
                   const std::vector<SvgClass>& classes, double png_scale) {
@@ -119,20 +143,16 @@ void write_figure(const FileWriter& write, const std::filesystem::path& stem, do
   };
   const std::filesystem::path svg_path = std::filesystem::path(stem).concat(".svg");
   const std::filesystem::path png_path = std::filesystem::path(stem).concat(".png");
+  const std::filesystem::path pdf_path = std::filesystem::path(stem).concat(".pdf");
   {
-    std::string svg;
-    cairo_surface_t* surface =
-        cairo_svg_surface_create_for_stream(append_to_string, &svg, width, height);
-    cairo_svg_surface_set_document_unit(surface, CAIRO_SVG_UNIT_PX);
-    cairo_t* cr = cairo_create(surface);
-    paint(cr);
-    const cairo_status_t drawn = cairo_status(cr);
-    cairo_destroy(cr);
-    cairo_surface_finish(surface);
-    const cairo_status_t finished = cairo_surface_status(surface);
-    cairo_surface_destroy(surface);
-    check(drawn, svg_path);
-    check(finished, svg_path);
+    std::string svg = vector_figure(
+        [&](std::string* bytes) {
+          cairo_surface_t* surface =
+              cairo_svg_surface_create_for_stream(append_to_string, bytes, width, height);
+          cairo_svg_surface_set_document_unit(surface, CAIRO_SVG_UNIT_PX);
+          return surface;
+        },
+        paint, svg_path);
     write(svg_path, finish_svg(std::move(svg), classes));
   }
   {
@@ -154,6 +174,19 @@ void write_figure(const FileWriter& write, const std::filesystem::path& stem, do
     cairo_surface_destroy(surface);
     check(encoded, png_path);
     write(png_path, png);
+  }
+  {
+    // One pixel is one PDF point (1/72 in). Cairo stamps the creation time into the document
+    // information; a date it cannot parse leaves it out, so that a re-render is byte-identical.
+    const std::string pdf = vector_figure(
+        [&](std::string* bytes) {
+          cairo_surface_t* surface =
+              cairo_pdf_surface_create_for_stream(append_to_string, bytes, width, height);
+          cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATE_DATE, "");
+          return surface;
+        },
+        paint, pdf_path);
+    write(pdf_path, pdf);
   }
 }
 

@@ -168,15 +168,22 @@ TEST_CASE(
   }
 }
 
-TEST_CASE("A run without faults or batteries has no lifetime section and no fault figures",
-          "[scenarios]") {
+TEST_CASE(
+    "A run without faults or batteries has no lifetime section and its energy map under Figures",
+    "[scenarios]") {
   const ShortRun& run = short_run();
   REQUIRE(run.status == 0);
   const std::string html = slurp(run.dir / "report.html");
   CHECK(html.find("id=\"lifetime\"") == std::string::npos);
   CHECK(html.find("chart-alive") == std::string::npos);
-  for (const std::string& stem : kFaultFigures)
-    CHECK_FALSE(fs::exists(run.dir / "figures" / (stem + ".png")));
+  for (const char* stem : {"alive_nodes", "twin_comparison"})
+    CHECK_FALSE(fs::exists(run.dir / "figures" / (std::string(stem) + ".png")));
+  // The energy map is drawn for every run with nodes.csv.
+  CHECK(fs::file_size(run.dir / "figures" / "energy_map.png") > 5000);
+  const std::size_t section = html.find("<section id=\"figures\">");
+  REQUIRE(section != std::string::npos);
+  CHECK(html.find("<figure id=\"figure-energy_map\">", section) != std::string::npos);
+  CHECK(masnet::test::count(html, "<figure id=\"figure-energy_map\">") == 1);
   // Energy by phase is in every run's summary; lifetime only in runs with faults or batteries.
   const json summary = json::parse(slurp(run.dir / "summary.json"));
   CHECK(summary["energy_j"].contains("by_phase"));

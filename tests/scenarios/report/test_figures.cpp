@@ -87,18 +87,21 @@ void check_png(const fs::path& path) {
 
 }  // namespace
 
-TEST_CASE("A short run prints its report's path last and writes every figure as PNG and SVG",
-          "[scenarios]") {
+TEST_CASE(
+    "A short run prints its report's path last and writes every figure as PNG and SVG and PDF",
+    "[scenarios]") {
   const ShortRun& run = short_run();
   INFO(run.output);
   REQUIRE(run.status == 0);
   CHECK(last_line(run.output) == "report: " + (fs::absolute(run.dir) / "report.html").string());
   CHECK(fs::exists(run.dir / "sensors.csv"));
   const fs::path figures = run.dir / "figures";
-  for (const char* stem : {"snapshot_t0.5", "snapshot_t1.0", "trajectories", "coverage_cost",
-                           "tracking", "radius", "messages", "energy", "correctness"}) {
+  for (const char* stem :
+       {"snapshot_t0.5", "snapshot_t1.0", "trajectories", "coverage_cost", "tracking", "radius",
+        "messages", "energy", "correctness", "energy_map"}) {
     check_png(figures / (std::string(stem) + ".png"));
     check_svg(figures / (std::string(stem) + ".svg"));
+    CHECK(slurp(figures / (std::string(stem) + ".pdf")).rfind("%PDF-", 0) == 0);
   }
   // Figures of other kinds of run are not drawn for an acoustic one.
   CHECK_FALSE(fs::exists(figures / "pollution.png"));
@@ -106,7 +109,7 @@ TEST_CASE("A short run prints its report's path last and writes every figure as 
   std::size_t files = 0;
   for ([[maybe_unused]] const auto& entry : fs::directory_iterator(figures))
     ++files;
-  CHECK(files == 18);
+  CHECK(files == 30);
 }
 
 TEST_CASE("Each snapshot SVG holds one cell element per robot, as the robot computed it",
@@ -141,7 +144,7 @@ TEST_CASE("masnet render redraws byte-identical figures and report from the run'
   for (const auto& entry : fs::directory_iterator(run.dir / "figures"))
     before[entry.path().filename().string()] = slurp(entry.path());
   const std::string report_before = slurp(run.dir / "report.html");
-  REQUIRE(before.size() == 18);
+  REQUIRE(before.size() == 30);
 
   const fs::path out = run.base / "render.txt";
   const std::string command = fmt::format("'{}/scenarios/masnet' render '{}' > '{}' 2>&1",
