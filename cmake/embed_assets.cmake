@@ -11,7 +11,8 @@ function(masnet_embed_assets target header namespace)
     COMMAND ${CMAKE_COMMAND} -DOUT=${out} -DNAMESPACE=${namespace} "-DFILES=${ARGN}" -P
             ${MASNET_EMBED_SCRIPT}
     DEPENDS ${ARGN} ${MASNET_EMBED_SCRIPT}
-    COMMENT "Embedding ${header}")
+    COMMENT "Embedding ${header}"
+    VERBATIM)  # quotes the list of FILES, whose ';' a shell would take for a command separator
   target_sources(${target} PRIVATE ${out})
   target_include_directories(${target} PRIVATE ${CMAKE_CURRENT_BINARY_DIR}/embedded)
 endfunction()
