@@ -14,7 +14,7 @@ function(masnet_embed_assets target header namespace)
             ${MASNET_EMBED_SCRIPT}
     DEPENDS ${ARGN} ${MASNET_EMBED_SCRIPT}
     COMMENT "Embedding ${header}"
-    VERBATIM)
+    VERBATIM)  # quotes the list of FILES, whose ';' a shell would take for a command separator
   target_sources(${target} PRIVATE ${out})
   target_include_directories(${target} PRIVATE ${CMAKE_CURRENT_BINARY_DIR}/embedded)
 endfunction()

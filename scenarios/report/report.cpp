@@ -13,6 +13,7 @@
 #include "scenarios/output/output_file.hpp"
 #include "scenarios/report/fault_tables.hpp"
 #include "scenarios/report/message_table.hpp"
+#include "scenarios/report/replay_section.hpp"
 
 namespace masnet::scenarios {
 namespace fs = std::filesystem;
@@ -409,7 +410,8 @@ fs::path write_report(const RunData& run, const std::vector<FigureInfo>& figures
   std::ostringstream h;
   h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
     << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-    << "<title>" << escape_html(title) << "</title>\n<style>" << kStyle << "</style>\n<script>"
+    << "<title>" << escape_html(title) << "</title>\n<style>" << kStyle
+    << (has_replay_section(run) ? replay_style() : std::string_view()) << "</style>\n<script>"
     << kErrorScript << "</script>\n</head>\n<body>\n";
 
   h << "<header>\n<h1>" << escape_html(run.name) << "</h1>\n<p>masnet run report — seed "
@@ -419,8 +421,9 @@ fs::path write_report(const RunData& run, const std::vector<FigureInfo>& figures
     << ".</p>\n"
     << "<nav><a href=\"#metadata\">Run</a><a href=\"#scenario\">Scenario</a><a "
        "href=\"#messages\">Messages and "
-       "energy</a><a href=\"#protocol\">Protocol</a><a href=\"#results\">Results</a><a "
-       "href=\"#snapshots\">Snapshots</a>"
+       "energy</a><a href=\"#protocol\">Protocol</a><a href=\"#results\">Results</a>"
+    << (has_replay_section(run) ? "<a href=\"#replay\">Replay</a>" : "")
+    << "<a href=\"#snapshots\">Snapshots</a>"
     << (has_lifetime_section(s) ? "<a href=\"#lifetime\">Lifetime and faults</a>" : "")
     << "<a href=\"#charts\">Time series</a><a "
        "href=\"#figures\">Figures</a></nav>\n"
@@ -475,6 +478,8 @@ fs::path write_report(const RunData& run, const std::vector<FigureInfo>& figures
       << key_value_table(value);
   }
   h << "</section>\n";
+
+  h << replay_section(run);
 
   // Snapshots with a slider (field maps beside the cells for diffusion runs).
   std::vector<double> times;
@@ -553,7 +558,7 @@ fs::path write_report(const RunData& run, const std::vector<FigureInfo>& figures
   h << "<script type=\"application/json\" id=\"timeseries-data\">"
     << escape_script(data.dump(-1, ' ', false, json::error_handler_t::replace)) << "</script>\n";
   if (chartjs) h << "<script>\n" << chartjs->code << "\n</script>\n";
-  h << "<script>" << kReportScript << "</script>\n</body>\n</html>\n";
+  h << "<script>" << kReportScript << "</script>\n" << replay_scripts(run) << "</body>\n</html>\n";
 
   const fs::path path = run.dir / "report.html";
   write_file(path, h.str());

@@ -124,6 +124,15 @@ RunData load_run_data(const fs::path& dir) {
       fs::exists(dir / "snapshots.json") ? read_json(dir / "snapshots.json") : json::array();
   if (!run.snapshots.is_array())
     throw std::runtime_error("'" + (dir / "snapshots.json").string() + "' is not a list");
+  // Older runs and runs with output.replay: false have none; a present file must be whole.
+  if (fs::exists(dir / "replay.json")) {
+    run.replay = read_json(dir / "replay.json");
+    if (!run.replay.is_object() || !run.replay.contains("header") ||
+        !run.replay["header"].is_object() || !run.replay.contains("frames") ||
+        !run.replay["frames"].is_array())
+      throw std::runtime_error("'" + (dir / "replay.json").string() +
+                               "' is not {\"header\": {...}, \"frames\": [...]}");
+  }
 
   try {
     const json& scenario = run.summary.at("scenario");

@@ -1,6 +1,6 @@
 #pragma once
-// A run directory read back from its files alone — summary.json, snapshots.json and the CSV
-// files (docs/outputs.md) — for the figures and the report.
+// A run directory read back from its files alone — summary.json, snapshots.json, replay.json
+// and the CSV files (docs/outputs.md) — for the figures and the report.
 #include <cstddef>
 #include <filesystem>
 #include <string>
@@ -40,6 +40,7 @@ struct RunData {
   std::filesystem::path dir;
   nlohmann::json summary;                 ///< summary.json
   nlohmann::json snapshots;               ///< snapshots.json (an array; empty when absent)
+  nlohmann::json replay;                  ///< replay.json ({header, frames}); null when absent
   Table timeseries, trajectories, nodes;  ///< required files
   Table updates;                          ///< updates.csv; no rows when not written
   std::vector<plot::Point> sensors;       ///< sensor positions, in reading order

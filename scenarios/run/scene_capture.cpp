@@ -41,8 +41,8 @@ SceneCapture::SceneCapture(agents::World& world, const ScenarioDef& def)
                                    std::max(width, height) / kMaxRasterBins);
   raster_nx_ = std::clamp<std::size_t>(static_cast<std::size_t>(std::lround(width / bin_size)), 1,
                                        kMaxRasterBins);
-  raster_ny_ = std::clamp<std::size_t>(static_cast<std::size_t>(std::lround(height / bin_size)),
-                                       1, kMaxRasterBins);
+  raster_ny_ = std::clamp<std::size_t>(static_cast<std::size_t>(std::lround(height / bin_size)), 1,
+                                       kMaxRasterBins);
   sensor_bin_.resize(sensors);
   bin_sensor_count_.assign(raster_nx_ * raster_ny_, 0);
   for (std::size_t s = 0; s < sensors; ++s) {
@@ -118,8 +118,8 @@ nlohmann::json SceneCapture::frame(const Sample* latest) {
     const Vec2 p = world_.robot_state(i).position;
     positions.push_back(qx(p.x()));
     positions.push_back(qy(p.y()));
-    radii.push_back(std::llround(world_.robot_protocol(i).radius() / (x1_ - x0_) *
-                                 kCoordinateSteps));
+    radii.push_back(
+        std::llround(world_.robot_protocol(i).radius() / (x1_ - x0_) * kCoordinateSteps));
     std::uint64_t frames_sent = 0;
     for (std::size_t type = 0; type < types; ++type)
       frames_sent += world_.radio()

@@ -202,8 +202,9 @@ const std::vector<Case> kCases = {
       "clock's resolution) (got 1e-12)"}},
     {"periodic_work_budget.yaml",
      {"periodic_work_budget.yaml:5:11: beacons.period: the run would take about 9e+10 periodic "
-      "steps (protocol updates 9e+03, beacons 9e+10, trajectory rows 4.5e+03), more than the limit "
-      "of 1e+09; use a longer period or a shorter duration, or set limits.allow_huge: true"}},
+      "steps (protocol updates 9e+03, beacons 9e+10, trajectory rows 4.5e+03, replay frames "
+      "2.5e+03), more than the limit of 1e+09; use a longer period or a shorter duration, or set "
+      "limits.allow_huge: true"}},
     {"duration_too_long.yaml",
      {"duration_too_long.yaml:2:11: duration: must be <= 1e+09 (got 1e10)"}},
     {"too_many_samples.yaml",

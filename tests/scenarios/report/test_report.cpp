@@ -151,7 +151,7 @@ TEST_CASE(
     CHECK(html.find("id=\"charts-unavailable\"") != std::string::npos);
     CHECK(html.find("Interactive charts are unavailable") != std::string::npos);
     CHECK(html.find("libjs-chart.js") != std::string::npos);
-    CHECK(html.find("<canvas") == std::string::npos);
+    CHECK(html.find("<canvas id=\"chart-") == std::string::npos);
     CHECK(html.find("<figure id=\"figure-trajectories\">") != std::string::npos);
   }
   SECTION("the file is an ES module, which a plain script cannot load") {
@@ -187,6 +187,8 @@ TEST_CASE("The report opens in headless Chromium without errors and draws its ch
   REQUIRE(body != std::string::npos);
   CHECK(std::stoi(page.substr(body + 19, 4)) >= 8);
   CHECK(count(page, "<canvas id=\"chart-") >= 8);
+  // The replay player ran: 1 s at a frame every 0.02 s.
+  CHECK(page.find("data-replay-frames=\"51\"") != std::string::npos);
   // Chart.js sizes every canvas it draws on.
   CHECK(count(page, "style=\"display: block; box-sizing: border-box;") >= 8);
   const std::string png = slurp(shot);
