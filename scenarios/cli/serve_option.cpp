@@ -84,7 +84,7 @@ void LiveSession::serve_until_interrupted() {
   parts_->server.wait_for_interrupt();
   const live::ServerStats stats = parts_->server.stats();
   parts_->server.stop();
-  std::printf("live view: stopped (%llu viewers, %llu frames sent, %llu coalesced)\n",
+  std::printf("live view: stopped (viewers %llu, frames sent %llu, coalesced %llu)\n",
               static_cast<unsigned long long>(stats.viewers_total),
               static_cast<unsigned long long>(stats.frames_sent),
               static_cast<unsigned long long>(stats.frames_coalesced));

@@ -30,11 +30,11 @@ struct ServerOptions {
 struct ServerStats {
   std::size_t viewers = 0;  ///< WebSocket viewers connected now
   std::uint64_t viewers_total = 0;
-  std::uint64_t frames_published = 0;  ///< frames handed to the server by the run
-  std::uint64_t frames_sent = 0;       ///< frames written to a viewer
-  std::uint64_t frames_coalesced = 0;  ///< frames replaced by a newer one before they were sent
-  std::uint64_t controls_dropped = 0;  ///< control messages dropped from a full queue
-  std::uint64_t commands = 0;          ///< commands accepted
+  std::uint64_t frames_published = 0;   ///< frames handed to the server by the run
+  std::uint64_t frames_sent = 0;        ///< frames written to a viewer
+  std::uint64_t frames_coalesced = 0;   ///< frames replaced by a newer one before they were sent
+  std::uint64_t controls_dropped = 0;   ///< control messages dropped from a full queue
+  std::uint64_t commands = 0;           ///< commands accepted
   std::uint64_t commands_rejected = 0;  ///< malformed or unknown commands
   std::uint64_t requests_refused = 0;   ///< bad host or origin, too many viewers, bad path
 };

@@ -21,14 +21,10 @@ LiveWatch::~LiveWatch() {
 }
 
 std::string LiveWatch::status_locked() const {
-  nlohmann::json status = {{"type", "status"},
-                           {"t", t_s_},
-                           {"paused", paused_},
-                           {"waiting_for_viewer", waiting_for_viewer_},
-                           {"speed", speed_},
-                           {"to_end", to_end_},
-                           {"finished", finished_},
-                           {"viewers", viewers_}};
+  nlohmann::json status = {{"type", "status"},      {"t", t_s_},
+                           {"paused", paused_},     {"waiting_for_viewer", waiting_for_viewer_},
+                           {"speed", speed_},       {"to_end", to_end_},
+                           {"finished", finished_}, {"viewers", viewers_}};
   return status.dump();
 }
 

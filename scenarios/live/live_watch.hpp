@@ -58,7 +58,7 @@ class LiveWatch final : public scenarios::RunWatcher {
   bool waiting_for_viewer_ = true;
   bool step_requested_ = false;
   bool announce_pause_ = false;  // a step ended: say so with the next frame
-  bool to_end_ = false;  // "run to the end": no pacing, no pauses
+  bool to_end_ = false;          // "run to the end": no pacing, no pauses
   bool finished_ = false;
   double speed_ = 1.0;
   double t_s_ = 0.0;

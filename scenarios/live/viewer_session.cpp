@@ -18,15 +18,17 @@ void ViewerSession::run(Request request) {
   // that neither answers pings nor sends anything is dropped.
   websocket::stream_base::timeout timeouts =
       websocket::stream_base::timeout::suggested(beast::role_type::server);
-  timeouts.idle_timeout = std::chrono::milliseconds(
-      static_cast<long long>(server_.options.idle_timeout_s * 1000.0));
+  timeouts.idle_timeout =
+      std::chrono::milliseconds(static_cast<long long>(server_.options.idle_timeout_s * 1000.0));
   timeouts.keep_alive_pings = true;
   ws_.set_option(timeouts);
   ws_.read_message_max(server_.options.max_command_bytes);
-  ws_.set_option(websocket::stream_base::decorator(
-      [](websocket::response_type& response) { response.set(beast::http::field::server, "masnet"); }));
+  ws_.set_option(websocket::stream_base::decorator([](websocket::response_type& response) {
+    response.set(beast::http::field::server, "masnet");
+  }));
   beast::get_lowest_layer(ws_).expires_never();  // the websocket timeouts take over
-  ws_.async_accept(request, beast::bind_front_handler(&ViewerSession::on_accept, shared_from_this()));
+  ws_.async_accept(request,
+                   beast::bind_front_handler(&ViewerSession::on_accept, shared_from_this()));
 }
 
 void ViewerSession::on_accept(beast::error_code ec) {
@@ -110,7 +112,7 @@ void ViewerSession::close_now() {
   closed_ = true;
   beast::error_code ignored;
   beast::get_lowest_layer(ws_).socket().shutdown(boost::asio::ip::tcp::socket::shutdown_both,
-                                                  ignored);
+                                                 ignored);
   beast::get_lowest_layer(ws_).socket().close(ignored);
 }
 

@@ -73,6 +73,7 @@
       if (state.trail.length > kTrailFrames) state.trail.shift();
     }
     state.latest = frame;
+    renderStatus();
     if (!state.drawPending) {
       state.drawPending = true;
       window.requestAnimationFrame(draw);
@@ -81,7 +82,17 @@
 
   function onStatus(s) {
     state.status = s;
-    var text = 't = ' + s.t.toFixed(2) + ' s';
+    renderStatus();
+    byId('play').textContent = s.paused || s.waiting_for_viewer ? 'Play' : 'Pause';
+    ['play', 'step', 'speed', 'end'].forEach(function (id) { byId(id).disabled = !!s.finished; });
+  }
+
+  // The state from the last status message, the time from the latest frame.
+  function renderStatus() {
+    var s = state.status;
+    if (!s) return;
+    var t = state.latest ? state.latest.t : s.t;
+    var text = 't = ' + t.toFixed(2) + ' s';
     if (s.finished) text += ', finished (the run directory is written)';
     else if (s.waiting_for_viewer) text += ', waiting for a viewer';
     else if (s.paused) text += ', paused';
@@ -89,8 +100,6 @@
     else text += ', running at ' + (s.speed > 0 ? s.speed + 'x' : 'full speed');
     text += '; viewers: ' + s.viewers;
     byId('status').textContent = text;
-    byId('play').textContent = s.paused || s.waiting_for_viewer ? 'Play' : 'Pause';
-    ['play', 'step', 'speed', 'end'].forEach(function (id) { byId(id).disabled = !!s.finished; });
   }
 
   function onMessage(message) {

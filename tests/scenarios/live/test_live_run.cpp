@@ -212,10 +212,10 @@ TEST_CASE("live run: --serve on a port already taken exits 2 before simulating")
 TEST_CASE("live run: --port without --serve is refused") {
   TempDir temp("needs");
   const fs::path log = temp.path / "output.txt";
-  const std::string command =
-      fmt::format("'{}/scenarios/masnet' run '{}/scenarios/paper/acoustic_tracking.yaml' --port 0 "
-                  "> '{}' 2>&1",
-                  MASNET_BINARY_DIR, MASNET_SOURCE_DIR, log.string());
+  const std::string command = fmt::format(
+      "'{}/scenarios/masnet' run '{}/scenarios/paper/acoustic_tracking.yaml' --port 0 "
+      "> '{}' 2>&1",
+      MASNET_BINARY_DIR, MASNET_SOURCE_DIR, log.string());
   CHECK(WEXITSTATUS(std::system(command.c_str())) == 2);
   CHECK(slurp(log).find("--port requires --serve") != std::string::npos);
 }

@@ -32,8 +32,8 @@ std::unique_ptr<Server> test_server(ServerOptions options = {}) {
 }
 
 std::string frame_text(int i, std::size_t padding = 0) {
-  return R"({"type":"frame","i":)" + std::to_string(i) + R"(,"pad":")" +
-         std::string(padding, 'x') + "\"}";
+  return R"({"type":"frame","i":)" + std::to_string(i) + R"(,"pad":")" + std::string(padding, 'x') +
+         "\"}";
 }
 
 }  // namespace

@@ -44,9 +44,9 @@ Image read_png(const fs::path& path) {
     const unsigned char* data = cairo_image_surface_get_data(surface);
     for (int y = 0; y < image.height; ++y)
       for (int x = 0; x < image.width; ++x)
-        image.pixels.push_back(
-            reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride)[x] &
-            0xFFFFFFu);
+        image.pixels.push_back(reinterpret_cast<const std::uint32_t*>(
+                                   data + static_cast<std::ptrdiff_t>(y) * stride)[x] &
+                               0xFFFFFFu);
   }
   cairo_surface_destroy(surface);
   return image;
