@@ -157,6 +157,8 @@ class Radio {
   const RadioParams& params() const { return params_; }
   /// Frames of one type sent and received (as addressee) by `node`.
   TypeCounters counters(NodeId node, MessageType type) const;
+  /// Frames `node` has transmitted so far, all types (cheap: no pending receptions are booked).
+  std::uint64_t frames_sent(NodeId node) const;
   /// Frames by type over all nodes (tx: transmissions; rx: receptions by addressees).
   const TypeCounters& totals(MessageType type) const {
     return totals_[static_cast<std::size_t>(type)];

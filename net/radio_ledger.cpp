@@ -96,6 +96,15 @@ void Radio::materialize() const {
   diffs_pending_ = false;
 }
 
+std::uint64_t Radio::frames_sent(NodeId node) const {
+  const std::size_t stride = tx_.size() / type_count_;
+  if (sim::index(node) >= stride) return 0;
+  std::uint64_t total = 0;
+  for (std::size_t t = 0; t < type_count_; ++t)
+    total += tx_[t * stride + sim::index(node)].count;
+  return total;
+}
+
 TypeCounters Radio::counters(NodeId node, MessageType type) const {
   materialize();
   const auto t = static_cast<std::size_t>(type);

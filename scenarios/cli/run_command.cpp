@@ -212,7 +212,7 @@ int run_run_command(const RunArgs& args) {
   }
   if (!args.quiet && !report.empty())
     std::printf("report: %s\n", (normalised_directory(out) / report).string().c_str());
-  if (live) live->serve_until_interrupted();
+  if (live) live->serve_until_interrupted(run.wall_time_s());
   return 0;
 }
 

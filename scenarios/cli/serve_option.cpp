@@ -77,7 +77,11 @@ scenarios::RunWatcher& LiveSession::watcher() {
   return parts_->watch;
 }
 
-void LiveSession::serve_until_interrupted() {
+void LiveSession::serve_until_interrupted(double wall_time_s) {
+  std::printf(
+      "live view: the run took %.3f s of wall time, %.3f s of it held (paused, paced "
+      "or waiting for a viewer)\n",
+      wall_time_s, parts_->watch.held_s());
   std::printf("live view: the run has ended; still serving %s until interrupted (Ctrl-C)\n",
               parts_->server.url().c_str());
   std::fflush(stdout);

@@ -40,8 +40,9 @@ class LiveSession {
   explicit LiveSession(const ServeArgs& args);
   ~LiveSession();
   scenarios::RunWatcher& watcher();
-  /// After the run: says so and serves until SIGINT or SIGTERM.
-  void serve_until_interrupted();
+  /// After the run: says so (with the wall time the run was held, of `wall_time_s`) and serves
+  /// until SIGINT or SIGTERM.
+  void serve_until_interrupted(double wall_time_s);
 
  private:
   struct Parts;

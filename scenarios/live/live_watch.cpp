@@ -66,6 +66,12 @@ void LiveWatch::on_frame(const nlohmann::json& frame) {
   }
   if (to_end_) return;
   if (step_requested_) return;  // on the way to the next update: no pacing
+  const Clock::time_point hold_start = Clock::now();
+  struct HeldTime {
+    Clock::duration& held;
+    Clock::time_point start;
+    ~HeldTime() { held += Clock::now() - start; }
+  } counted{held_, hold_start};
   const bool was_paused = paused_;
   changed_.wait(lock, [this] { return !paused_ || to_end_; });
   if (was_paused) reanchor_locked(t_s_);
@@ -145,6 +151,11 @@ void LiveWatch::viewers_changed(std::size_t viewers) {
     changed_.notify_all();
   }
   server_.publish_control(status_locked());
+}
+
+double LiveWatch::held_s() const {
+  std::lock_guard lock(mutex_);
+  return std::chrono::duration<double>(held_).count();
 }
 
 std::vector<std::string> LiveWatch::greeting() {

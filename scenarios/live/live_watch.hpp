@@ -42,6 +42,9 @@ class LiveWatch final : public scenarios::RunWatcher {
   void viewers_changed(std::size_t viewers);
   /// What a new viewer is sent: hello (header), history, latest frame, status.
   std::vector<std::string> greeting();
+  /// Wall seconds the simulation was held so far: paused, paced to real time, or waiting
+  /// for its first viewer (the rest of the run's wall time is the simulation's own).
+  double held_s() const;
 
  private:
   using Clock = std::chrono::steady_clock;
@@ -69,6 +72,7 @@ class LiveWatch final : public scenarios::RunWatcher {
   std::string latest_frame_;
   std::deque<nlohmann::json> history_;  // {t, p, metrics} of frames, thinned when full
   std::size_t history_stride_ = 1, frames_seen_ = 0;
+  Clock::duration held_{};
 };
 
 }  // namespace masnet::live

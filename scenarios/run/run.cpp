@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <optional>
 
 #include "scenarios/output/output_file.hpp"
 #include "scenarios/run/run_warnings.hpp"
@@ -35,6 +36,8 @@ namespace {
 // Events between two progress calls while a chunk runs: a few microseconds of wall time each,
 // so the bar hears from the run many times a second at a negligible cost per event.
 constexpr std::uint64_t kProgressEveryEvents = 4096;
+// SceneCapture::sent_since_last streams: the replay's frames and a watcher's count apart.
+constexpr std::size_t kReplayStream = 0, kWatcherStream = 1;
 }  // namespace
 
 void Run::execute(const ProgressFn& progress, RunWatcher* watcher) {
@@ -89,7 +92,9 @@ void Run::execute(const ProgressFn& progress, RunWatcher* watcher) {
       // Stopped inside the chunk, possibly with more events at this very time: show the frame,
       // then finish the chunk as if nothing had happened.
       stopped_after_update = false;
-      watcher->on_frame(scene_->frame(latest_sample()));
+      nlohmann::json frame = scene_->frame(latest_sample());
+      frame["sent"] = scene_->sent_since_last(kWatcherStream);
+      watcher->on_frame(frame);
       continue;
     }
     if (t_sample == next) {
@@ -104,12 +109,22 @@ void Run::execute(const ProgressFn& progress, RunWatcher* watcher) {
       recorder_->snapshot();
       ++next_snapshot;
     }
+    // The replay and a watcher usually share their instants: one capture serves both.
+    std::optional<nlohmann::json> frame_now;
+    const auto capture = [&]() -> const nlohmann::json& {
+      if (!frame_now) frame_now = scene_->frame(latest_sample());
+      return *frame_now;
+    };
     if (replay && t_replay == next) {
-      replay_frames_.push_back(scene_->frame(latest_sample()).dump());
+      nlohmann::json frame = capture();
+      frame["sent"] = scene_->sent_since_last(kReplayStream);
+      replay_frames_.push_back(frame.dump());
       ++next_replay;
     }
     if (watcher && t_frame == next) {
-      watcher->on_frame(scene_->frame(latest_sample()));
+      nlohmann::json frame = capture();
+      frame["sent"] = scene_->sent_since_last(kWatcherStream);
+      watcher->on_frame(frame);
       ++next_frame;
     }
     if (progress) progress(sim::to_seconds(next), simulator_->events_run());
@@ -121,7 +136,9 @@ void Run::execute(const ProgressFn& progress, RunWatcher* watcher) {
     recorder_->sample();
   if (watcher) {
     recorder_->set_update_listener(nullptr);
-    watcher->on_end(scene_->frame(latest_sample()));
+    nlohmann::json frame = scene_->frame(latest_sample());
+    frame["sent"] = scene_->sent_since_last(kWatcherStream);
+    watcher->on_end(frame);
   }
   traffic_fingerprint_ =
       world_->radio().traffic_fingerprint().hex();  // a pass over every node: once

@@ -20,7 +20,7 @@ std::string base64(const std::vector<std::uint8_t>& bytes) {
 }
 
 SceneCapture::SceneCapture(agents::World& world, const ScenarioDef& def)
-    : world_(world), def_(def), robot_sent_(world.robot_count(), 0) {
+    : world_(world), def_(def) {
   const auto& domain = world.def().domain.vertices;
   if (!domain.empty()) {
     x0_ = x1_ = domain.front().x();
@@ -107,26 +107,31 @@ std::string SceneCapture::raster(double& max_value) {
   return base64(bytes);
 }
 
+nlohmann::json SceneCapture::sent_since_last(std::size_t stream) {
+  if (robot_sent_.size() <= stream) robot_sent_.resize(stream + 1);
+  std::vector<std::uint64_t>& previous = robot_sent_[stream];
+  previous.resize(world_.robot_count(), 0);
+  nlohmann::json sent = nlohmann::json::array();
+  for (std::size_t i = 0; i < world_.robot_count(); ++i) {
+    const std::uint64_t frames_sent = world_.radio().frames_sent(world_.robot_node(i));
+    sent.push_back(frames_sent - previous[i]);
+    previous[i] = frames_sent;
+  }
+  return sent;
+}
+
 nlohmann::json SceneCapture::frame(const Sample* latest) {
   nlohmann::json f;
   f["t"] = sim::to_seconds(world_.simulator().now());
   nlohmann::json positions = nlohmann::json::array(), radii = nlohmann::json::array(),
-                 sent = nlohmann::json::array(), down = nlohmann::json::array(),
-                 cells = nlohmann::json::array(), oracle = nlohmann::json::array();
-  const std::size_t types = net::message_type_count();
+                 down = nlohmann::json::array(), cells = nlohmann::json::array(),
+                 oracle = nlohmann::json::array();
   for (std::size_t i = 0; i < world_.robot_count(); ++i) {
     const Vec2 p = world_.robot_state(i).position;
     positions.push_back(qx(p.x()));
     positions.push_back(qy(p.y()));
     radii.push_back(
         std::llround(world_.robot_protocol(i).radius() / (x1_ - x0_) * kCoordinateSteps));
-    std::uint64_t frames_sent = 0;
-    for (std::size_t type = 0; type < types; ++type)
-      frames_sent += world_.radio()
-                         .counters(world_.robot_node(i), static_cast<net::MessageType>(type))
-                         .tx_count;
-    sent.push_back(frames_sent - robot_sent_[i]);
-    robot_sent_[i] = frames_sent;
     cells.push_back(polygon(world_.robot_protocol(i).cell().vertices));
     if (world_.node_alive(world_.robot_node(i))) {
       oracle.push_back(polygon(world_.oracle_cell(i).polygon.vertices));
@@ -137,7 +142,6 @@ nlohmann::json SceneCapture::frame(const Sample* latest) {
   }
   f["p"] = std::move(positions);
   f["r"] = std::move(radii);
-  f["sent"] = std::move(sent);
   f["down"] = std::move(down);
   f["cells"] = std::move(cells);
   f["oracle"] = std::move(oracle);

@@ -28,8 +28,11 @@ class SceneCapture {
 
   /// What does not change during the run: the domain, the raster's grid, counts, names.
   nlohmann::json header() const;
-  /// The state now; `latest` (may be null) adds the metric curves' latest values.
+  /// The state now, but `sent`; `latest` (may be null) adds the metric curves' latest values.
   nlohmann::json frame(const Sample* latest);
+  /// The frames each robot transmitted since the previous call for the same `stream` (the
+  /// replay and a watcher keep their own count): a frame's `sent`.
+  nlohmann::json sent_since_last(std::size_t stream);
 
   std::size_t raster_nx() const { return raster_nx_; }
   std::size_t raster_ny() const { return raster_ny_; }
@@ -48,7 +51,7 @@ class SceneCapture {
   std::vector<std::uint32_t> sensor_bin_;
   std::vector<std::uint32_t> bin_sensor_count_;
   std::vector<double> bin_sum_;
-  std::vector<std::uint64_t> robot_sent_;  // frames each robot had sent at the previous frame
+  std::vector<std::vector<std::uint64_t>> robot_sent_;  // per stream: frames sent at its last call
 };
 
 /// Base64 of `bytes` (RFC 4648, with padding).

@@ -150,6 +150,8 @@ TEST_CASE("nothing is delivered beyond the range and the addressee of a unicast 
   CHECK(radio.stats(sim::node_id(2)).overheard_count == 1);
   CHECK(radio.stats(sim::node_id(0)).unreachable_count == 1);
   CHECK(radio.counters(sim::node_id(0), net::MessageType::beacon).tx_count == 3);
+  CHECK(radio.frames_sent(sim::node_id(0)) == 3);  // all types, as the live frames count them
+  CHECK(radio.frames_sent(sim::node_id(1)) == 0);
 }
 
 TEST_CASE("the loss rate lies inside the binomial 99.9% interval", "[net]") {

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <map>
+#include <sstream>
 #include <thread>
 
 #include <fmt/format.h>
@@ -68,10 +69,17 @@ class StopAtEveryUpdate final : public RunWatcher {
     CHECK(frame["t"].get<double>() >= last_t);
     last_t = frame["t"];
     ++frames;
+    for (const auto& n : frame["sent"])
+      sent += n.get<std::uint64_t>();
   }
   bool stop_after_update() override { return ++updates, true; }
-  void on_end(const nlohmann::json&) override { ended = true; }
+  void on_end(const nlohmann::json& frame) override {
+    ended = true;
+    for (const auto& n : frame["sent"])
+      sent += n.get<std::uint64_t>();
+  }
   std::size_t robots = 0, frames = 0, updates = 0;
+  std::uint64_t sent = 0;  // every robot transmission, counted once whatever the frames
   double last_t = 0;
   bool ended = false;
 };
@@ -133,6 +141,17 @@ TEST_CASE("live run: stopping after every protocol update changes nothing") {
   CHECK(watcher.frames == updates + 6);  // one a stop, and the checkpoints 0, 0.1, ..., 0.5
   CHECK(stepped.fingerprint() == plain.fingerprint());
   CHECK(stepped.summary()["coverage"] == plain.summary()["coverage"]);
+  // The watcher's flashes and the replay's count the same transmissions, each its own way.
+  TempDir temp("sent");
+  stepped.write_files(temp.path.string());
+  std::istringstream replay(slurp(temp.path / "replay.json"));
+  const nlohmann::json parsed = nlohmann::json::parse(replay);
+  std::uint64_t replay_sent = 0;
+  for (const auto& frame : parsed["frames"])
+    for (const auto& n : frame["sent"])
+      replay_sent += n.get<std::uint64_t>();
+  CHECK(watcher.sent > 0);
+  CHECK(watcher.sent == replay_sent);
 }
 
 TEST_CASE("live run: a viewer pauses, steps one update and runs the rest to the end") {
