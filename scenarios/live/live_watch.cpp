@@ -15,6 +15,8 @@ LiveWatch::LiveWatch(Server& server, WatchOptions options)
 }
 
 LiveWatch::~LiveWatch() {
+  // The server's thread may be about to call a handler it copied: stop it first.
+  server_.stop();
   server_.set_greeting(nullptr);
   server_.set_command_handler(nullptr);
   server_.set_viewers_handler(nullptr);

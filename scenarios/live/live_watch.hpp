@@ -27,7 +27,8 @@ struct WatchOptions {
 
 class LiveWatch final : public scenarios::RunWatcher {
  public:
-  /// Registers itself as `server`'s greeting, command and viewers handler.
+  /// Registers itself as `server`'s greeting, command and viewers handler; its destructor stops
+  /// the server (whose thread would otherwise call into a destroyed object).
   LiveWatch(Server& server, WatchOptions options);
   ~LiveWatch() override;
 

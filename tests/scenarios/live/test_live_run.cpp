@@ -84,6 +84,26 @@ class StopAtEveryUpdate final : public RunWatcher {
   bool ended = false;
 };
 
+/// A server on a free port with a LiveWatch, started.
+struct ServedRun {
+  masnet::live::Server server{loopback_any_port(), "page"};
+  masnet::live::LiveWatch watch;
+  ServedRun(bool start_running, double speed) : watch(server, watch_options(start_running, speed)) {
+    server.start();
+  }
+  static masnet::live::ServerOptions loopback_any_port() {
+    masnet::live::ServerOptions options;
+    options.port = 0;
+    return options;
+  }
+  static masnet::live::WatchOptions watch_options(bool start_running, double speed) {
+    masnet::live::WatchOptions options;
+    options.start_running = start_running;
+    options.speed = speed;
+    return options;
+  }
+};
+
 }  // namespace
 
 TEST_CASE("live run: a connected viewer changes neither the fingerprint nor any output file") {
@@ -92,14 +112,8 @@ TEST_CASE("live run: a connected viewer changes neither the fingerprint nor any 
   plain.execute();
   const auto plain_files = written_files(plain, temp.path / "plain");
 
-  masnet::live::ServerOptions server_options;
-  server_options.port = 0;
-  masnet::live::Server server(server_options, "page");
-  masnet::live::WatchOptions watch_options;
-  watch_options.start_running = false;  // waits for the viewer below
-  watch_options.speed = 0.0;
-  masnet::live::LiveWatch watch(server, watch_options);
-  server.start();
+  ServedRun served(false, 0.0);  // waits for the viewer below, then as fast as possible
+  auto& [server, watch] = served;
   std::size_t frames = 0;
   bool ended = false;
   std::thread viewer_thread([&] {
@@ -155,14 +169,8 @@ TEST_CASE("live run: stopping after every protocol update changes nothing") {
 }
 
 TEST_CASE("live run: a viewer pauses, steps one update and runs the rest to the end") {
-  masnet::live::ServerOptions server_options;
-  server_options.port = 0;
-  masnet::live::Server server(server_options, "page");
-  masnet::live::WatchOptions watch_options;
-  watch_options.start_running = false;
-  watch_options.speed = 1.0;  // real time: 2 s of run leave time to pause it
-  masnet::live::LiveWatch watch(server, watch_options);
-  server.start();
+  ServedRun served(false, 1.0);  // real time: 2 s of run leave time to pause it
+  auto& [server, watch] = served;
   Run run(acoustic(2.0));
   std::thread run_thread([&] { run.execute({}, &watch); });
   RawViewer viewer(server.port());
@@ -191,14 +199,8 @@ TEST_CASE("live run: a viewer pauses, steps one update and runs the rest to the 
 }
 
 TEST_CASE("live run: a late viewer gets the whole history of the finished run") {
-  masnet::live::ServerOptions server_options;
-  server_options.port = 0;
-  masnet::live::Server server(server_options, "page");
-  masnet::live::WatchOptions watch_options;
-  watch_options.start_running = true;
-  watch_options.speed = 0.0;
-  masnet::live::LiveWatch watch(server, watch_options);
-  server.start();
+  ServedRun served(true, 0.0);
+  auto& [server, watch] = served;
   Run run(acoustic(0.5));
   run.execute({}, &watch);
   RawViewer late(server.port());
