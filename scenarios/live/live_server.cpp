@@ -21,10 +21,6 @@ namespace {
 constexpr std::size_t kMaxRequestBytes = 8192;
 constexpr auto kRequestTimeout = std::chrono::seconds(30);
 
-bool is_loopback(const asio::ip::address& address) {
-  return address.is_loopback();
-}
-
 /// The host part of a Host header ("127.0.0.1:8080" -> "127.0.0.1", "[::1]:80" -> "[::1]").
 std::string host_name(std::string_view host) {
   if (!host.empty() && host.front() == '[') {
@@ -132,18 +128,16 @@ bool ServerState::request_allowed(const Request& request) const {
 
 void ServerState::viewer_joined(ViewerSession* viewer) {
   viewers.insert(viewer);
-  viewer_count = viewers.size();
   ++viewers_total;
-  Server::ViewersHandler handler;
-  {
-    std::lock_guard lock(mutex);
-    if (!stopped) handler = viewers_handler;
-  }
-  if (handler) handler(viewers.size());
+  viewers_changed();
 }
 
 void ServerState::viewer_left(ViewerSession* viewer) {
   viewers.erase(viewer);
+  viewers_changed();
+}
+
+void ServerState::viewers_changed() {
   viewer_count = viewers.size();
   Server::ViewersHandler handler;
   {
@@ -183,6 +177,14 @@ std::vector<std::string> ServerState::greeting_messages() {
   return source ? source() : std::vector<std::string>{};
 }
 
+void ServerState::schedule_drain_locked() {
+  // One drain pending at most: however fast the run publishes, the io_context's queue holds
+  // one handler, and the drain takes whatever is newest.
+  if (drain_posted || stopped) return;
+  drain_posted = true;
+  asio::post(io, [this] { drain(); });
+}
+
 void ServerState::drain() {
   Message frame;
   std::deque<Message> controls;
@@ -208,7 +210,7 @@ Server::Server(ServerOptions options, std::string page_html)
   if (ec)
     throw BindError("'" + s.options.bind_address + "' is not an IP address (give one, e.g. " +
                     "127.0.0.1 or 0.0.0.0)");
-  s.loopback = is_loopback(address);
+  s.loopback = address.is_loopback();
   const tcp::endpoint endpoint(address, s.options.port);
   s.acceptor.open(endpoint.protocol(), ec);
   if (!ec) s.acceptor.set_option(asio::socket_base::reuse_address(true), ec);
@@ -287,31 +289,21 @@ void Server::wait_for_interrupt() {
 void Server::publish_frame(std::string message) {
   ServerState& s = *state_;
   ++s.frames_published;
-  bool post = false;
-  {
-    std::lock_guard lock(s.mutex);
-    if (s.outgoing_frame) ++s.frames_coalesced;  // the server's thread has not caught up
-    s.outgoing_frame = std::make_shared<const std::string>(std::move(message));
-    post = !s.drain_posted && !s.stopped;
-    s.drain_posted = s.drain_posted || post;
-  }
-  if (post) asio::post(s.io, [&s] { s.drain(); });
+  std::lock_guard lock(s.mutex);
+  if (s.outgoing_frame) ++s.frames_coalesced;  // the server's thread has not caught up
+  s.outgoing_frame = std::make_shared<const std::string>(std::move(message));
+  s.schedule_drain_locked();
 }
 
 void Server::publish_control(std::string message) {
   ServerState& s = *state_;
-  bool post = false;
-  {
-    std::lock_guard lock(s.mutex);
-    if (s.outgoing_controls.size() >= ServerState::kMaxPendingControls) {
-      s.outgoing_controls.pop_front();
-      ++s.controls_dropped;
-    }
-    s.outgoing_controls.push_back(std::make_shared<const std::string>(std::move(message)));
-    post = !s.drain_posted && !s.stopped;
-    s.drain_posted = s.drain_posted || post;
+  std::lock_guard lock(s.mutex);
+  if (s.outgoing_controls.size() >= ServerState::kMaxPendingControls) {
+    s.outgoing_controls.pop_front();
+    ++s.controls_dropped;
   }
-  if (post) asio::post(s.io, [&s] { s.drain(); });
+  s.outgoing_controls.push_back(std::make_shared<const std::string>(std::move(message)));
+  s.schedule_drain_locked();
 }
 
 std::uint16_t Server::port() const {

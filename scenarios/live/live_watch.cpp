@@ -99,14 +99,14 @@ bool LiveWatch::stop_after_update() {
 }
 
 void LiveWatch::on_end(const nlohmann::json& final_frame) {
-  std::string message = R"({"type":"end","frame":)" + final_frame.dump() + "}";
+  const std::string frame_text = final_frame.dump();
   std::lock_guard lock(mutex_);
   t_s_ = final_frame.value("t", t_s_);
   finished_ = true;
   paused_ = false;
   remember(final_frame);
-  latest_frame_ = R"({"type":"frame","frame":)" + final_frame.dump() + "}";
-  server_.publish_control(std::move(message));
+  latest_frame_ = R"({"type":"frame","frame":)" + frame_text + "}";
+  server_.publish_control(R"({"type":"end","frame":)" + frame_text + "}");
   server_.publish_control(status_locked());
 }
 

@@ -27,14 +27,18 @@ class ViewerSession;
 struct ServerState {
   ServerState(ServerOptions server_options, std::string page_html);
 
-  /// Called by a viewer session on the server's thread.
+  /// Called by a viewer's connection on the server's thread.
   void viewer_joined(ViewerSession* viewer);
   void viewer_left(ViewerSession* viewer);
+  /// Updates the count and tells the viewers handler.
+  void viewers_changed();
   /// A command from a viewer: empty when accepted, else the reason.
   std::string command(const std::string& text);
   std::vector<std::string> greeting_messages();
   /// Hands what was published since the last call to every viewer (server's thread).
   void drain();
+  /// Posts a drain unless one is pending; `mutex` is held.
+  void schedule_drain_locked();
   /// Whether a request may see the page or open a WebSocket: its Host names this server
   /// (loopback names when bound to loopback, against DNS rebinding) and its Origin, if any,
   /// is the page's own.

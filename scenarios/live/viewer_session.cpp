@@ -32,7 +32,7 @@ void ViewerSession::run(Request request) {
 }
 
 void ViewerSession::on_accept(beast::error_code ec) {
-  if (ec) return;  // the session ends with its last handler
+  if (ec) return;  // the connection ends with its last handler
   joined_ = true;
   server_.viewer_joined(this);
   for (std::string& message : server_.greeting_messages())
@@ -46,16 +46,14 @@ void ViewerSession::read_next() {
 
 void ViewerSession::on_read(beast::error_code ec, std::size_t /*bytes*/) {
   // Closed, reset, timed out or over read_message_max (Beast then closes with 1009 "too
-  // big"): the session ends here.
+  // big"): the connection ends here.
   if (ec) {
     closed_ = true;
     return;
   }
-  std::string text = beast::buffers_to_string(buffer_.data());
+  // Binary messages are not commands: read as empty text, they are refused as malformed.
+  const std::string text = ws_.got_text() ? beast::buffers_to_string(buffer_.data()) : "";
   buffer_.consume(buffer_.size());
-  if (!ws_.got_text()) {
-    text.clear();  // binary messages are not commands
-  }
   if (std::string problem = server_.command(text); !problem.empty()) {
     nlohmann::json reply = {{"type", "error"}, {"message", problem}};
     send_control(std::make_shared<const std::string>(reply.dump()));

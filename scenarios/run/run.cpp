@@ -77,8 +77,14 @@ void Run::execute(const ProgressFn& progress, RunWatcher* watcher) {
       }
     });
   }
-  const auto latest_sample = [this] {
-    return recorder_->samples().empty() ? nullptr : &recorder_->samples().back();
+  // A frame for one stream (the replay or the watcher): the capture `now` (made here if it is
+  // empty, so that streams at the same instant share it) with that stream's transmission counts.
+  const auto frame_for = [this](std::size_t stream, std::optional<nlohmann::json>& now) {
+    if (!now)
+      now = scene_->frame(recorder_->samples().empty() ? nullptr : &recorder_->samples().back());
+    nlohmann::json frame = *now;
+    frame["sent"] = scene_->sent_since_last(stream);
+    return frame;
   };
   for (;;) {
     const sim::Time t_sample = sim::kTimeZero + next_sample * sample;
@@ -92,9 +98,8 @@ void Run::execute(const ProgressFn& progress, RunWatcher* watcher) {
       // Stopped inside the chunk, possibly with more events at this very time: show the frame,
       // then finish the chunk as if nothing had happened.
       stopped_after_update = false;
-      nlohmann::json frame = scene_->frame(latest_sample());
-      frame["sent"] = scene_->sent_since_last(kWatcherStream);
-      watcher->on_frame(frame);
+      std::optional<nlohmann::json> now;
+      watcher->on_frame(frame_for(kWatcherStream, now));
       continue;
     }
     if (t_sample == next) {
@@ -110,21 +115,13 @@ void Run::execute(const ProgressFn& progress, RunWatcher* watcher) {
       ++next_snapshot;
     }
     // The replay and a watcher usually share their instants: one capture serves both.
-    std::optional<nlohmann::json> frame_now;
-    const auto capture = [&]() -> const nlohmann::json& {
-      if (!frame_now) frame_now = scene_->frame(latest_sample());
-      return *frame_now;
-    };
+    std::optional<nlohmann::json> now;
     if (replay && t_replay == next) {
-      nlohmann::json frame = capture();
-      frame["sent"] = scene_->sent_since_last(kReplayStream);
-      replay_frames_.push_back(frame.dump());
+      replay_frames_.push_back(frame_for(kReplayStream, now).dump());
       ++next_replay;
     }
     if (watcher && t_frame == next) {
-      nlohmann::json frame = capture();
-      frame["sent"] = scene_->sent_since_last(kWatcherStream);
-      watcher->on_frame(frame);
+      watcher->on_frame(frame_for(kWatcherStream, now));
       ++next_frame;
     }
     if (progress) progress(sim::to_seconds(next), simulator_->events_run());
@@ -136,9 +133,8 @@ void Run::execute(const ProgressFn& progress, RunWatcher* watcher) {
     recorder_->sample();
   if (watcher) {
     recorder_->set_update_listener(nullptr);
-    nlohmann::json frame = scene_->frame(latest_sample());
-    frame["sent"] = scene_->sent_since_last(kWatcherStream);
-    watcher->on_end(frame);
+    std::optional<nlohmann::json> now;
+    watcher->on_end(frame_for(kWatcherStream, now));
   }
   traffic_fingerprint_ =
       world_->radio().traffic_fingerprint().hex();  // a pass over every node: once

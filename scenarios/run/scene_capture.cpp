@@ -6,7 +6,6 @@
 #include <boost/archive/iterators/base64_from_binary.hpp>
 #include <boost/archive/iterators/transform_width.hpp>
 
-#include "net/messages.hpp"
 #include "scenarios/run/recorder.hpp"
 
 namespace masnet::scenarios {
