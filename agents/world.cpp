@@ -1,5 +1,6 @@
 #include "agents/world.hpp"
 
+#include "agents/follower_agent.hpp"
 #include "agents/robot_agent.hpp"
 
 #include <algorithm>
@@ -17,6 +18,12 @@ std::uint32_t interest_mask(const std::vector<net::MessageType>& types) {
   for (net::MessageType t : types)
     mask |= 1u << static_cast<unsigned>(t);
   return mask;
+}
+
+// The radio sizes its counters by the message types registered when it is built.
+const WorldDef& with_message_types(const WorldDef& def) {
+  if (def.formation.enabled()) formation_message_type();
+  return def;
 }
 
 double diameter(const protocols::ConvexPolygon& polygon) {
@@ -64,7 +71,7 @@ World::World(sim::Simulator& simulator, const WorldDef& def)
     : simulator_(simulator),
       log_(simulator),
       def_(def),
-      radio_(simulator, def.radio, def.seed),
+      radio_(simulator, with_message_types(def).radio, def.seed),
       field_(def.field),
       protocol_context_{def.domain,        def.scaling,        def.radio.max_range,
                         def.robots.size(), def.sensors.size(), def.seed},
@@ -90,6 +97,7 @@ World::World(sim::Simulator& simulator, const WorldDef& def)
     positions.push_back(def_.sensors[s].position);
     ids.push_back(sensor_node(s));
   }
+  add_followers();
   sensor_grid_.build(positions, ids);
   sensor_lines_.build(positions, ids);  // empty unless the sensors lie on rows
   if (!def_.sensors.empty()) {
@@ -121,6 +129,7 @@ void World::start() {
     simulator_.after(sim::Duration{0}, [agent] { agent->protocol().start(); });
   }
   schedule_faults();
+  start_groups();
   if (diffusion_)  // the PDE is the one thing that advances on a fixed step
     simulator_.after(sim::seconds(def_.field.diffusion.dt_s), [this] { pde_step(); });
   const BeaconDef& b = def_.beacons;
@@ -271,8 +280,10 @@ protocols::RobotCell World::oracle_cell(std::size_t robot, double first_radius) 
   for (;;) {
     found.clear();
     radio_.for_each_mobile_within(p, r, [&](NodeId id) {
-      // A robot that is down covers nothing: the cells are those of the robots up.
-      if (id != robot_node(robot) && (dead_robots_ == 0 || robots_[sim::index(id)]->alive()))
+      // A robot that is down covers nothing: the cells are those of the robots up. Followers
+      // of robot groups are mobile nodes too, but no sites.
+      if (id != robot_node(robot) && is_robot(id) &&
+          (dead_robots_ == 0 || robots_[sim::index(id)]->alive()))
         found.push_back({(robots_[sim::index(id)]->state().position - p).squaredNorm(), id});
     });
     // Nearest first, ties by id: the first few clips shrink the cell and the farther candidates
@@ -416,6 +427,8 @@ void World::on_frame(NodeId receiver, const net::Frame& frame) {
     robots_[i]->protocol().on_frame(frame);
     return;
   }
+  if (i >= robots_.size() + def_.sensors.size())
+    return follower_heard(i - robots_.size() - def_.sensors.size(), frame);
   SensorContext context(*this, i - robots_.size());
   sensor_protocol_->on_frame(context, frame);
 }
@@ -432,14 +445,18 @@ void World::on_battery_empty(NodeId node) {
 
 Vec2 World::position(NodeId node) const {
   const std::size_t i = sim::index(node);
-  return i < robots_.size() ? robots_[i]->state().position
-                            : def_.sensors[i - robots_.size()].position;
+  if (i < robots_.size()) return robots_[i]->state().position;
+  const std::size_t s = i - robots_.size();
+  if (s < def_.sensors.size()) return def_.sensors[s].position;
+  return follower_state(s - def_.sensors.size()).position;
 }
 
 double World::speed_bound() const {
   double bound = 0.0;
   for (const auto& robot : robots_)
     bound = std::max(bound, robot->segment().speed_bound());
+  for (const auto& follower : followers_)
+    bound = std::max(bound, follower->segment().speed_bound());
   return bound;
 }
 

@@ -11,6 +11,7 @@
 #include "agents/density_field.hpp"
 #include "agents/diffusion_field.hpp"
 #include "agents/faults.hpp"
+#include "agents/formation.hpp"
 #include "agents/robot_motion.hpp"
 #include "net/line_index.hpp"
 #include "net/radio.hpp"
@@ -71,6 +72,8 @@ struct WorldDef {
   double sensor_battery_j = 0.0, robot_battery_j = 0.0;
   LocomotionEnergy locomotion;
   std::vector<FaultDef> faults;
+  /// Robot groups (docs/formations.md): every robot above leads a group of this size.
+  FormationDef formation;
 };
 
 /// Why a node went down.
@@ -147,6 +150,22 @@ class World final : public net::RadioListener,
   double neutraliser_used(std::size_t robot) const { return neutraliser_used_[robot]; }
   std::uint64_t sensor_readings() const { return readings_taken_; }
 
+  // ---- Robot groups (docs/formations.md): robot g leads group g --------------------------------
+  /// Followers, group by group (follower f is slot f % (size − 1) of group f / (size − 1)); their
+  /// node ids follow the sensors'.
+  std::size_t follower_count() const { return followers_.size(); }
+  std::size_t group_count() const { return def_.formation.enabled() ? robots_.size() : 0; }
+  NodeId follower_node(std::size_t follower) const {
+    return sim::node_id(
+        static_cast<std::uint32_t>(robots_.size() + def_.sensors.size() + follower));
+  }
+  bool is_follower(NodeId node) const {
+    return sim::index(node) >= robots_.size() + def_.sensors.size();
+  }
+  MotionState follower_state(std::size_t follower) const;
+  std::size_t follower_group(std::size_t follower) const;
+  const FollowerController& follower_controller(std::size_t follower) const;
+
   // ---- Faults, lifetime, locomotion (docs/faults-and-lifetime.md) -------------------------
   bool node_alive(NodeId node) const { return radio_.alive(node); }
   std::size_t alive_robot_count() const { return robots_.size() - dead_robots_; }
@@ -170,6 +189,7 @@ class World final : public net::RadioListener,
  private:
   class RobotAgent;
   class SensorContext;
+  class FollowerAgent;
 
   /// The reading of `sensor`, which stands at `position` (passed: the caller has it at hand).
   double sensor_reading(std::size_t sensor, const Vec2& position);
@@ -210,6 +230,13 @@ class World final : public net::RadioListener,
   double uniform_sensor_area_ = 0.0;  // > 0 when every sensor stands for the same area
   WorldObserver* observer_ = nullptr;
   std::size_t dead_robots_ = 0, dead_sensors_ = 0;
+  std::vector<std::unique_ptr<FollowerAgent>> followers_;
+  void add_followers();
+  void start_groups();
+  void leader_tick(std::size_t group);
+  void follower_tick(std::size_t follower);
+  void follower_heard(std::size_t follower, const net::Frame& frame);
+  void steer_follower(std::size_t follower);
   void schedule_faults();
   void strike(std::size_t fault);
   void lift(std::size_t fault);

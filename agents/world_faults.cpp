@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "agents/follower_agent.hpp"
 #include "agents/robot_agent.hpp"
 #include "agents/world.hpp"
 
@@ -18,6 +19,9 @@ void World::kill(NodeId node, DownCause cause) {
   if (is_robot(node)) {
     robots_[sim::index(node)]->halt();
     ++dead_robots_;
+  } else if (is_follower(node)) {
+    followers_[sim::index(node) - robots_.size() - def_.sensors.size()]->halt(
+        def_.motion, sim::to_seconds(simulator_.now()));
   } else {
     ++dead_sensors_;
   }
@@ -30,6 +34,8 @@ void World::restart(NodeId node) {
   if (is_robot(node)) {
     robots_[sim::index(node)]->revive();
     --dead_robots_;
+  } else if (is_follower(node)) {
+    followers_[sim::index(node) - robots_.size() - def_.sensors.size()]->revive();
   } else {
     --dead_sensors_;
   }

@@ -421,7 +421,7 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
   def.output = read_output(top.section("output"), duration_ok ? def.duration_s : 0.0,
                            def.world.field.kind == FieldKind::acoustic);
   def.world.faults = read_faults(top, duration_ok ? def.duration_s : 0.0, counts);
-  top.reject("groups", "section 'groups' is not supported by this version of masnet");
+  top.reject("groups", "robot groups are set under robots.groups (docs/formations.md)");
   top.finish();
   // What the numbers imply (work, densities) only means something once they are all valid.
   if (reader.ok()) check_limits(def, layout.count, caps, at);

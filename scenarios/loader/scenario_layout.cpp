@@ -419,6 +419,11 @@ std::vector<Vec2> read_robots(Section s, const ConvexPolygon& domain, std::uint6
       s.choice<bool>("dynamics", false, {{"second_order", false}, {"discrete_lloyd", true}});
   world.robot_battery_j = s.number("battery", 0.0, Range::non_negative());
   world.locomotion = read_locomotion(s.section("energy"));
+  // Read only when present: a scenario without groups resolves exactly as before.
+  if (s.has("groups"))
+    world.formation = read_groups(s.section("groups"), robots.size(), caps);
+  else
+    s.mark_known("groups");
   s.finish();
   return robots;
 }

@@ -29,6 +29,9 @@ inline constexpr double kMaxDensityLog10 = 100.0;
 /// How many nodes outside the domain are listed before "... and N more".
 inline constexpr std::size_t kMaxListed = 10;
 
+/// Robots per group (`robots.groups.size`), the leader included.
+inline constexpr std::int64_t kMaxGroupSize = 64;
+
 /// What the loader may build, from LoadOptions and limits.allow_huge.
 struct NodeCaps {
   std::int64_t sensors = kMaxSensors;
@@ -60,6 +63,8 @@ std::vector<Vec2> read_robots(Section s, const protocols::ConvexPolygon& domain,
 
 /// `robots.energy`: the locomotion energy (scenario_faults.cpp).
 agents::LocomotionEnergy read_locomotion(Section s);
+/// `robots.groups` for `leaders` leaders (scenario_groups.cpp).
+agents::FormationDef read_groups(Section s, std::size_t leaders, const NodeCaps& caps);
 
 /// How many nodes of each class a fault may name, when known (nullopt: their section had
 /// errors, so ids are not checked against a count that may be wrong).

@@ -25,10 +25,11 @@ using plot::Rgb;
 using plot::Scale;
 using plot::Style;
 
-// Axes over the run's time with y fitted to `series`.
+}  // namespace
+
 Axes time_axes(cairo_t* cr, Box box, const RunData& run,
-               const std::vector<const std::vector<double>*>& series, Scale y_scale = Scale::linear,
-               bool from_zero = false) {
+               const std::vector<const std::vector<double>*>& series, Scale y_scale,
+               bool from_zero) {
   Axes axes(cr, box);
   auto [lo, hi] =
       plot::data_range(series, y_scale == Scale::log ? 0.05 : 0.06, y_scale == Scale::log);
@@ -36,8 +37,6 @@ Axes time_axes(cairo_t* cr, Box box, const RunData& run,
   axes.x_range(0.0, run.duration_s > 0 ? run.duration_s : 1.0).y_range(lo, hi, y_scale);
   return axes;
 }
-
-}  // namespace
 
 void draw_coverage(cairo_t* cr, const RunData& run) {
   const Table& ts = run.timeseries;

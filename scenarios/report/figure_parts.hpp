@@ -59,6 +59,10 @@ void draw_alive_nodes(cairo_t* cr, const RunData& run);
 void draw_twin_comparison(cairo_t* cr, const RunData& run);
 
 // The curves over time (figure_curves.cpp).
+/// Axes over the run's time with y fitted to `series` (from 0 when `from_zero`).
+plot::Axes time_axes(cairo_t* cr, plot::Box box, const RunData& run,
+                     const std::vector<const std::vector<double>*>& series,
+                     plot::Scale y_scale = plot::Scale::linear, bool from_zero = false);
 void draw_coverage(cairo_t* cr, const RunData& run);
 void draw_tracking(cairo_t* cr, const RunData& run);
 void draw_pollution(cairo_t* cr, const RunData& run);
@@ -68,5 +72,12 @@ void draw_energy(cairo_t* cr, const RunData& run);
 void draw_correctness(cairo_t* cr, const RunData& run);
 /// Runs whose timeseries.csv has a `collisions` column (radio levels collision and csma).
 void draw_collisions(cairo_t* cr, const RunData& run);
+
+// Robot groups (formation_figures.cpp), for runs with formation.csv and followers.csv.
+bool has_formation(const RunData& run);
+/// Leaders' cells, leaders, followers and their slots at the snapshot `snap`.
+void draw_formation_groups(cairo_t* cr, const RunData& run, const nlohmann::json& snap);
+/// Formation error, and the distances between and within groups, over time.
+void draw_formation_curves(cairo_t* cr, const RunData& run);
 
 }  // namespace masnet::scenarios::figure_parts

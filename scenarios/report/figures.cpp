@@ -489,6 +489,16 @@ std::vector<FigureInfo> write_figures(const RunData& run, const fs::path& figure
             draw_snapshot(cr, run, snap, pde_maps ? field_colours : colours, options, true);
           });
   }
+  if (has_formation(run))
+    for (const json& snap : run.snapshots) {
+      const double t = snap.value("t", 0.0);
+      add({"groups_t" + snapshot_time_label(t), "groups",
+           fmt::format("Robot groups at t = {} s: each leader's cell, the leader, its followers "
+                       "and their slots.",
+                       snapshot_time_label(t)),
+           t},
+          map_w, map_h, [&](cairo_t* cr) { draw_formation_groups(cr, run, snap); });
+    }
   add({"trajectories", "trajectories",
        fmt::format(
            "Robot paths over the whole run and the {} paths (bold) with their direction of motion.",
@@ -517,6 +527,11 @@ std::vector<FigureInfo> write_figures(const RunData& run, const fs::path& figure
   add({"correctness", "curve",
        "Share of protocol updates whose neighbour set equals the oracle's, over time."},
       760, 500, [&](cairo_t* cr) { draw_correctness(cr, run); });
+  if (has_formation(run))
+    add({"formation", "curve",
+         "Formation error (each follower to its slot around the leader) and the nearest robots "
+         "of two groups and of one group over time."},
+        760, 560, [&](cairo_t* cr) { draw_formation_curves(cr, run); });
   if (run.timeseries.has("collisions"))
     add({"collisions", "curve",
          "Receptions lost to overlapping frames: so far, and per second of each sample period."},

@@ -22,8 +22,8 @@ struct FigureOptions {
 /// A figure written as figures/<stem>.png, figures/<stem>.svg and figures/<stem>.pdf.
 struct FigureInfo {
   std::string stem;
-  std::string kind;     ///< snapshot, field, trajectories, curve, map (the energy map of a run
-                        ///< without faults or batteries) or fault
+  std::string kind;     ///< snapshot, field, groups, trajectories, curve, map (the energy map
+                        ///< of a run without faults or batteries) or fault
   std::string caption;  ///< one sentence for the report
   double t_s = std::numeric_limits<double>::quiet_NaN();  ///< snapshot and field figures
 };

@@ -499,7 +499,8 @@ fs::path write_report(const RunData& run, const std::vector<FigureInfo>& figures
       h << "<div class=\"snapshot-frame\" data-t=\"" << label << "\" id=\"snapshot-" << label
         << "\"" << (k ? " hidden" : "") << ">\n";
       for (const FigureInfo& f : figures)
-        if ((f.kind == "snapshot" || f.kind == "field") && snapshot_time_label(f.t_s) == label)
+        if ((f.kind == "snapshot" || f.kind == "field" || f.kind == "groups") &&
+            snapshot_time_label(f.t_s) == label)
           h << image(figures_dir, f);
       h << "</div>\n";
     }
@@ -535,7 +536,8 @@ fs::path write_report(const RunData& run, const std::vector<FigureInfo>& figures
   h << "<section id=\"figures\">\n<h2>Figures</h2>\n";
   bool any = false;
   for (const FigureInfo& f : figures) {
-    if (f.kind == "snapshot" || f.kind == "field" || f.kind == "fault") continue;
+    if (f.kind == "snapshot" || f.kind == "field" || f.kind == "groups" || f.kind == "fault")
+      continue;
     any = true;
     h << "<figure id=\"figure-" << escape_html(f.stem) << "\">\n"
       << image(figures_dir, f) << "<figcaption>" << escape_html(f.caption) << " (figures/"

@@ -120,6 +120,8 @@ RunData load_run_data(const fs::path& dir) {
   run.trajectories = Table::read(dir / "trajectories.csv");
   run.nodes = Table::read(dir / "nodes.csv");
   if (fs::exists(dir / "updates.csv")) run.updates = Table::read(dir / "updates.csv");
+  if (fs::exists(dir / "formation.csv")) run.formation = Table::read(dir / "formation.csv");
+  if (fs::exists(dir / "followers.csv")) run.followers = Table::read(dir / "followers.csv");
   run.snapshots =
       fs::exists(dir / "snapshots.json") ? read_json(dir / "snapshots.json") : json::array();
   if (!run.snapshots.is_array())

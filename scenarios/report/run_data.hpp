@@ -43,6 +43,7 @@ struct RunData {
   nlohmann::json replay;                  ///< replay.json ({header, frames}); null when absent
   Table timeseries, trajectories, nodes;  ///< required files
   Table updates;                          ///< updates.csv; no rows when not written
+  Table formation, followers;             ///< runs with robot groups; no rows otherwise
   std::vector<plot::Point> sensors;       ///< sensor positions, in reading order
   std::vector<plot::Point> domain;        ///< Ω's vertices (world units)
   std::string name;                       ///< scenario name

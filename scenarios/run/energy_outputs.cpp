@@ -56,7 +56,7 @@ void add_energy_details(nlohmann::json& energy, agents::World& world, std::uint6
   std::vector<double> robots, sensors;
   for (std::uint32_t n = 0; n < radio.node_count(); ++n) {
     const sim::NodeId id = sim::node_id(n);
-    (world.is_robot(id) ? robots : sensors).push_back(radio.energy_j(id));
+    (world.is_robot(id) || world.is_follower(id) ? robots : sensors).push_back(radio.energy_j(id));
   }
   energy["distribution"] = {{"sensors", distribution_summary(std::move(sensors))},
                             {"robots", distribution_summary(std::move(robots))}};

@@ -376,8 +376,10 @@ void Recorder::write_nodes(const std::string& path) const {
   auto it = std::back_inserter(rows);
   for (std::uint32_t n = 0; n < radio.node_count(); ++n) {
     const sim::NodeId id = sim::node_id(n);
-    const bool robot = world_.is_robot(id);
-    const std::size_t index = robot ? n : n - world_.robot_count();
+    const bool robot = world_.is_robot(id), follower = world_.is_follower(id);
+    const std::size_t index = robot      ? n
+                              : follower ? n - world_.robot_count() - world_.sensor_count()
+                                         : n - world_.robot_count();
     const Vec2 p = world_.position(id);
     const net::NodeRadioStats& s = radio.stats(id);
     std::uint64_t tx = 0, txb = 0, rx = 0, rxb = 0;
@@ -388,8 +390,11 @@ void Recorder::write_nodes(const std::string& path) const {
       rx += c.rx_count;
       rxb += c.rx_bytes;
     }
-    fmt::format_to(it, FMT_COMPILE("{},{},{},{},{},{},"), n, robot ? "robot" : "sensor", index,
-                   p.x(), p.y(), s.alive ? 1 : 0);
+    fmt::format_to(it, FMT_COMPILE("{},{},{},{},{},{},"), n,
+                   robot      ? "robot"
+                   : follower ? "follower"
+                              : "sensor",
+                   index, p.x(), p.y(), s.alive ? 1 : 0);
     if (!s.alive) fmt::format_to(it, FMT_COMPILE("{}"), sim::to_seconds(s.died_at));
     fmt::format_to(it, FMT_COMPILE(",{},{},{},{},{},{},{},{},{},{},{},{},{}"),
                    s.energy_tx_j + s.energy_rx_j + s.energy_idle_j, s.energy_tx_j, s.energy_rx_j,
@@ -475,7 +480,7 @@ nlohmann::json Recorder::summary_metrics() const {
     idle += s.energy_idle_j;
     max_node = std::max(max_node, e);
     dead += s.alive ? 0 : 1;
-    if (world_.is_robot(id)) {
+    if (world_.is_robot(id) || world_.is_follower(id)) {
       robots_total += e;
     } else {
       sensors_total += e;

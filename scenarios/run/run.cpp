@@ -18,6 +18,7 @@ Run::Run(ScenarioDef def)
       world_(std::make_unique<agents::World>(*simulator_, def_.world)),
       recorder_(std::make_unique<Recorder>(*world_, def_)) {
   world_->set_observer(recorder_.get());
+  if (world_->group_count() > 0) formation_ = std::make_unique<FormationRecorder>(*world_);
 }
 
 Run::~Run() = default;
@@ -104,10 +105,12 @@ void Run::execute(const ProgressFn& progress, RunWatcher* watcher) {
     }
     if (t_sample == next) {
       recorder_->sample();
+      if (formation_) formation_->sample();
       ++next_sample;
     }
     if (t_trajectory == next) {
       recorder_->sample_trajectories();
+      if (formation_) formation_->sample_positions();
       ++next_trajectory;
     }
     while (next_snapshot < snapshots.size() && snapshots[next_snapshot] == next) {
@@ -129,8 +132,10 @@ void Run::execute(const ProgressFn& progress, RunWatcher* watcher) {
   }
   simulator_->set_progress_hook(0, nullptr);
   // The final state is always sampled, whatever the period.
-  if (recorder_->samples().empty() || recorder_->samples().back().t_s != def_.duration_s)
+  if (recorder_->samples().empty() || recorder_->samples().back().t_s != def_.duration_s) {
     recorder_->sample();
+    if (formation_) formation_->sample();
+  }
   if (watcher) {
     recorder_->set_update_listener(nullptr);
     std::optional<nlohmann::json> now;
@@ -199,6 +204,7 @@ nlohmann::json Run::summary() const {
                    {"sensor_layout", def_.sensor_layout},
                    {"resolved", def_.resolved}};
   j.update(recorder_->summary_metrics());
+  if (formation_) j["formation"] = formation_->summary();
   j["warnings"] = run_warnings(j, def_.world.radio.loss);
   return j;
 }
@@ -211,6 +217,10 @@ void Run::write_files(const std::string& dir) const {
   recorder_->write_trajectories((d / "trajectories.csv").string());
   if (def_.output.updates) recorder_->write_updates((d / "updates.csv").string());
   recorder_->write_snapshots((d / "snapshots.json").string());
+  if (formation_) {
+    formation_->write_formation((d / "formation.csv").string());
+    formation_->write_followers((d / "followers.csv").string());
+  }
   if (def_.output.replay && scene_) write_replay((d / "replay.json").string());
 }
 

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scenarios/loader/scenario.hpp"
+#include "scenarios/run/formation_outputs.hpp"
 #include "scenarios/run/recorder.hpp"
 #include "scenarios/run/run_watcher.hpp"
 #include "scenarios/run/scene_capture.hpp"
@@ -34,6 +35,8 @@ class Run {
   void write_files(const std::string& dir) const;
 
   const Recorder& recorder() const { return *recorder_; }
+  /// What the robot groups did; null in a run without groups.
+  const FormationRecorder* formation() const { return formation_.get(); }
   std::uint64_t events() const;
   std::string fingerprint() const;
   /// The radio's outcomes (net::Radio::traffic_fingerprint) at the end of the run: with
@@ -50,6 +53,7 @@ class Run {
   std::unique_ptr<sim::Simulator> simulator_;
   std::unique_ptr<agents::World> world_;
   std::unique_ptr<Recorder> recorder_;
+  std::unique_ptr<FormationRecorder> formation_;
   std::unique_ptr<SceneCapture> scene_;
   std::vector<std::string> replay_frames_;  // serialised: a run may hold thousands
   double wall_time_s_ = 0.0;
