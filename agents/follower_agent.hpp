@@ -29,8 +29,7 @@ class World::FollowerAgent {
   /// A new target from now: a new closed-form segment from the current state.
   void steer(const MotionParams& motion, double now_s, const Vec2& target) {
     if (!alive_) return;
-    const MotionState from =
-        motion.jump_to_target ? MotionState{target, Vec2{0, 0}} : state(now_s);
+    const MotionState from = motion.jump_to_target ? MotionState{target, Vec2{0, 0}} : state(now_s);
     segment_ = MotionSegment(motion, now_s, from, target);
   }
   /// Down: stands where it is.

@@ -32,9 +32,9 @@ std::vector<Vec2> formation_offsets(const FormationDef& def) {
       const double chord = n >= 2 ? 2.0 * std::sin(std::numbers::pi / static_cast<double>(n)) : 1;
       const double radius = std::max(d, d / chord);
       for (std::size_t k = 0; k < n; ++k) {
-        const double angle =
-            std::numbers::pi / 2.0 + 2.0 * std::numbers::pi * static_cast<double>(k) /
-                                         static_cast<double>(n);
+        const double angle = std::numbers::pi / 2.0 + 2.0 * std::numbers::pi *
+                                                          static_cast<double>(k) /
+                                                          static_cast<double>(n);
         offsets.push_back(Vec2{radius * std::cos(angle), radius * std::sin(angle)});
       }
       break;

@@ -19,14 +19,14 @@ enum class FormationShape { line, wedge, circle, offsets };
 struct FormationDef {
   std::size_t group_size = 1;  ///< robots per group, the leader included; 1 = no groups
   FormationShape shape = FormationShape::wedge;
-  double spacing_m = 0.05;   ///< distance between neighbouring slots at full scale (world units)
+  double spacing_m = 0.05;    ///< distance between neighbouring slots at full scale (world units)
   std::vector<Vec2> offsets;  ///< shape `offsets`: one per follower, from the leader
-  double state_period_s = 0.05;  ///< every group member broadcasts its state this often
-  double range_m = 0.25;         ///< range of those broadcasts (world units)
+  double state_period_s = 0.05;   ///< every group member broadcasts its state this often
+  double range_m = 0.25;          ///< range of those broadcasts (world units)
   double leader_weight = 1.0;     ///< consensus weight of the leader's slot
   double neighbour_weight = 1.0;  ///< consensus weight of each fellow follower heard
-  double margin_m = 0.01;  ///< slots keep this clearance from the cell's edges (world units)
-  double stale_after_s = 0.25;  ///< a fellow's state older than this is not used
+  double margin_m = 0.01;         ///< slots keep this clearance from the cell's edges (world units)
+  double stale_after_s = 0.25;    ///< a fellow's state older than this is not used
 
   bool enabled() const { return group_size > 1; }
   std::size_t followers_per_group() const { return group_size - 1; }

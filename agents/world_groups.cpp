@@ -56,8 +56,12 @@ void World::leader_tick(std::size_t group) {
   RobotAgent& leader = *robots_[group];
   if (leader.alive()) {
     const MotionState state = leader.state();
-    FormationState message{static_cast<std::uint32_t>(group), -1, state.position, state.velocity,
-                           leader.segment().target(), leader.protocol().cell()};
+    FormationState message{static_cast<std::uint32_t>(group),
+                           -1,
+                           state.position,
+                           state.velocity,
+                           leader.segment().target(),
+                           leader.protocol().cell()};
     send(robot_node(group), sim::kNoNode, def_.formation.range_m,
          formation_message(std::move(message), radio_.params().sizes));
   }
@@ -72,8 +76,11 @@ void World::follower_tick(std::size_t follower) {
     const MotionState state = agent.state(now_s);
     steer_follower(follower);
     FormationState message{static_cast<std::uint32_t>(agent.group()),
-                           static_cast<std::int32_t>(agent.slot()), state.position,
-                           state.velocity, state.position, {}};
+                           static_cast<std::int32_t>(agent.slot()),
+                           state.position,
+                           state.velocity,
+                           state.position,
+                           {}};
     send(follower_node(follower), sim::kNoNode, def_.formation.range_m,
          formation_message(std::move(message), radio_.params().sizes));
   }

@@ -2,6 +2,7 @@
 // Shared by the figure files only (figures.cpp draws the maps, figure_curves.cpp the curves
 // over time): colours, small readers of the run's data, and the curve figures.
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <map>
 #include <string_view>
@@ -46,6 +47,18 @@ std::pair<double, double> map_figure_size(const RunData& run, double below_px);
 plot::Axes map_axes(cairo_t* cr, const RunData& run);
 /// Clips to Ω (inside an Axes::clip).
 void clip_to_domain(cairo_t* cr, const plot::Axes& axes, const std::vector<plot::Point>& domain);
+
+// The pollution field as a 3-D surface (surface_figures.cpp).
+/// Width of the surface panel, left of the field map, in a pollution surface figure.
+inline constexpr double kSurfacePanelPx = 600;
+/// The least height of a pollution surface figure (a wide Ω's map is lower than that).
+inline constexpr double kSurfaceMinHeightPx = 520;
+/// The field `heights` (cell centres as the surface's nodes) at `t_s` as a surface in the left
+/// panel, kSurfacePanelPx × `height_px`: z from 0 to this snapshot's peak, coloured by
+/// `colours` (the field maps' scale); then `draw_map` translated right of it.
+void draw_pollution_surface(cairo_t* cr, const RunData& run, double t_s,
+                            const plot::Raster& heights, const plot::ColourScale& colours,
+                            double height_px, const std::function<void(cairo_t*)>& draw_map);
 
 // Energy, faults and lifetime (fault_figures.cpp): the energy map for every run with nodes.csv,
 // the others for runs whose summary.json has `lifetime`.

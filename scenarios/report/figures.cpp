@@ -289,6 +289,21 @@ std::string colour_label(const RunData& run, const plot::ColourScale& c, bool pd
   return c.scale == Scale::log ? what + " (log scale)" : what;
 }
 
+// What the sensors read at a snapshot, as a raster.
+plot::Raster readings_raster(const RunData& run, const json& snap) {
+  std::vector<double> readings;
+  for (const json& v : snap.value("readings", json::array()))
+    readings.push_back(v.is_number() ? v.get<double>() : kNaN);
+  return sensor_raster(run.sensors, readings, run.domain);
+}
+
+// The field of a diffusion snapshot: the PDE grid when the snapshot has it, else (like the
+// cell figures) what the sensors read.
+plot::Raster field_raster(const RunData& run, const json& snap) {
+  plot::Raster pde = pde_raster(snap);
+  return pde.values.empty() ? readings_raster(run, snap) : pde;
+}
+
 // One snapshot: the sensor readings as a heat map, cells, robots, centroids, targets.
 // `field_only`: the diffusion field map (robots and sources, no cells).
 void draw_snapshot(cairo_t* cr, const RunData& run, const json& snap,
@@ -296,17 +311,10 @@ void draw_snapshot(cairo_t* cr, const RunData& run, const json& snap,
                    bool field_only) {
   Axes axes = map_axes(cr, run);
   const double t = snap.value("t", 0.0);
-  std::vector<double> readings;
-  for (const json& v : snap.value("readings", json::array()))
-    readings.push_back(v.is_number() ? v.get<double>() : kNaN);
-
-  // Field maps show the PDE grid when the snapshot has it, else (like the cell figures) what
-  // the sensors read.
-  const plot::Raster pde = field_only ? pde_raster(snap) : plot::Raster{};
-  const bool on_grid = !pde.values.empty();
+  const bool on_grid = field_only && !pde_raster(snap).values.empty();
   axes.clip();
   clip_to_domain(cr, axes, run.domain);
-  axes.heat_map(on_grid ? pde : sensor_raster(run.sensors, readings, run.domain), colours);
+  axes.heat_map(field_only ? field_raster(run, snap) : readings_raster(run, snap), colours);
   axes.unclip();
   axes.decorate("x (world units)", "y (world units)");
   axes.polygon(run.domain, Style{kBlack, 1.2});
@@ -480,14 +488,25 @@ std::vector<FigureInfo> write_figures(const RunData& run, const fs::path& figure
          t},
         map_w, map_h, [&](cairo_t* cr) { draw_snapshot(cr, run, snap, colours, options, false); },
         snapshot_svg_classes());
-    if (is_diffusion(run))
-      add({"field_t" + label, "field",
-           fmt::format("The pollution field u{} with the robots and sources at t = {} s.",
-                       pde_maps ? " on the PDE grid" : " at the sensors", label),
-           t},
-          map_w, map_h, [&](cairo_t* cr) {
-            draw_snapshot(cr, run, snap, pde_maps ? field_colours : colours, options, true);
-          });
+    if (!is_diffusion(run)) continue;
+    const plot::ColourScale& map_colours = pde_maps ? field_colours : colours;
+    auto draw_field = [&](cairo_t* cr) {
+      draw_snapshot(cr, run, snap, map_colours, options, true);
+    };
+    add({"field_t" + label, "field",
+         fmt::format("The pollution field u{} with the robots and sources at t = {} s.",
+                     pde_maps ? " on the PDE grid" : " at the sensors", label),
+         t},
+        map_w, map_h, draw_field);
+    add({"pollution_surface_t" + label, "surface",
+         fmt::format("The pollution field u as a surface over Ω (z up to this snapshot's peak, "
+                     "colours as in the field map) beside the field map at t = {} s.",
+                     label),
+         t},
+        kSurfacePanelPx + map_w, std::max(map_h, kSurfaceMinHeightPx), [&](cairo_t* cr) {
+          draw_pollution_surface(cr, run, t, field_raster(run, snap), map_colours,
+                                 std::max(map_h, kSurfaceMinHeightPx), draw_field);
+        });
   }
   if (has_formation(run))
     for (const json& snap : run.snapshots) {

@@ -22,15 +22,15 @@ struct FigureOptions {
 /// A figure written as figures/<stem>.png, figures/<stem>.svg and figures/<stem>.pdf.
 struct FigureInfo {
   std::string stem;
-  std::string kind;     ///< snapshot, field, groups, trajectories, curve, map (the energy map
-                        ///< of a run without faults or batteries) or fault
+  std::string kind;     ///< snapshot, field, surface, groups, trajectories, curve, map (the
+                        ///< energy map of a run without faults or batteries) or fault
   std::string caption;  ///< one sentence for the report
-  double t_s = std::numeric_limits<double>::quiet_NaN();  ///< snapshot and field figures
+  double t_s = std::numeric_limits<double>::quiet_NaN();  ///< snapshot, field, surface, groups
 };
 
 /// Replaces `figures_dir` with every figure the run's data allow, and lists them in a stable
-/// order: snapshots (and field maps) by time, trajectories, the curves, then the energy map
-/// and the figures of faults. Maps take Ω's aspect ratio (docs/outputs.md, "Sizes").
+/// order: snapshots (and field maps and surfaces) by time, trajectories, the curves, then the
+/// energy map and the figures of faults. Maps take Ω's aspect ratio (docs/outputs.md, "Sizes").
 std::vector<FigureInfo> write_figures(const RunData& run, const std::filesystem::path& figures_dir,
                                       const FigureOptions& options = {});
 

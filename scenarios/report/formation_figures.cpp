@@ -53,8 +53,7 @@ void draw_formation_groups(cairo_t* cr, const RunData& run, const json& snap) {
     const plot::Rgb colour = plot::categorical(g);
     if (g < leaders.size())  // the group's shape: a line from the leader to each follower
       axes.line({leaders[g].x, x[i]}, {leaders[g].y, y[i]}, Style{colour, 1.0});
-    if (i < slot_x.size())
-      axes.markers({{slot_x[i], slot_y[i]}}, Marker::cross, 6, colour, colour);
+    if (i < slot_x.size()) axes.markers({{slot_x[i], slot_y[i]}}, Marker::cross, 6, colour, colour);
     axes.markers({{x[i], y[i]}}, Marker::dot, 6, plot::Rgb{1, 1, 1}, colour);
   }
   for (std::size_t g = 0; g < leaders.size(); ++g)

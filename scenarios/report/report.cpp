@@ -345,6 +345,10 @@ std::string energy_table(const json& summary) {
 
 }  // namespace
 
+std::string figure_data_uri(const fs::path& dir, const std::string& stem) {
+  return figure_uri(dir, stem);
+}
+
 std::optional<fs::path> find_chartjs(const ReportOptions& options) {
   if (!options.chartjs.empty()) {
     if (fs::is_regular_file(options.chartjs)) return options.chartjs;
@@ -481,7 +485,7 @@ fs::path write_report(const RunData& run, const std::vector<FigureInfo>& figures
 
   h << replay_section(run);
 
-  // Snapshots with a slider (field maps beside the cells for diffusion runs).
+  // Snapshots with a slider (for diffusion runs the field maps and surfaces beside the cells).
   std::vector<double> times;
   for (const FigureInfo& f : figures)
     if (f.kind == "snapshot") times.push_back(f.t_s);
@@ -499,7 +503,8 @@ fs::path write_report(const RunData& run, const std::vector<FigureInfo>& figures
       h << "<div class=\"snapshot-frame\" data-t=\"" << label << "\" id=\"snapshot-" << label
         << "\"" << (k ? " hidden" : "") << ">\n";
       for (const FigureInfo& f : figures)
-        if ((f.kind == "snapshot" || f.kind == "field" || f.kind == "groups") &&
+        if ((f.kind == "snapshot" || f.kind == "field" || f.kind == "surface" ||
+             f.kind == "groups") &&
             snapshot_time_label(f.t_s) == label)
           h << image(figures_dir, f);
       h << "</div>\n";
@@ -536,7 +541,8 @@ fs::path write_report(const RunData& run, const std::vector<FigureInfo>& figures
   h << "<section id=\"figures\">\n<h2>Figures</h2>\n";
   bool any = false;
   for (const FigureInfo& f : figures) {
-    if (f.kind == "snapshot" || f.kind == "field" || f.kind == "groups" || f.kind == "fault")
+    if (f.kind == "snapshot" || f.kind == "field" || f.kind == "surface" || f.kind == "groups" ||
+        f.kind == "fault")
       continue;
     any = true;
     h << "<figure id=\"figure-" << escape_html(f.stem) << "\">\n"

@@ -33,6 +33,10 @@ struct ChartLibrary {
 /// otherwise nothing, with the reason (HTML) in `why_not`.
 std::optional<ChartLibrary> load_chartjs(const ReportOptions& options, std::string& why_not);
 
+/// `dir`/`stem`.svg or .png, whichever is smaller, as a data URI for an <img>; empty when
+/// neither exists.
+std::string figure_data_uri(const std::filesystem::path& dir, const std::string& stem);
+
 /// Text made safe for HTML content and attribute values (& < > ").
 std::string escape_html(std::string_view text);
 

@@ -19,10 +19,10 @@ Vec2 FormationRecorder::slot_now(std::size_t follower) const {
   const std::size_t slot = follower % offsets_.size();
   const Vec2 leader = world_.robot_state(group).position;
   const protocols::ConvexPolygon& cell = world_.robot_protocol(group).cell();
-  const double scale =
-      cell.empty() ? 1.0
-                   : agents::fit_scale(agents::inset(cell, world_.def().formation.margin_m),
-                                       leader, offsets_);
+  const double scale = cell.empty()
+                           ? 1.0
+                           : agents::fit_scale(agents::inset(cell, world_.def().formation.margin_m),
+                                               leader, offsets_);
   return leader + scale * offsets_[slot];
 }
 
@@ -39,9 +39,10 @@ void FormationRecorder::sample() {
     const protocols::ConvexPolygon& cell = world_.robot_protocol(g).cell();
     row.outside_leader_max =
         std::max(row.outside_leader_max, agents::distance_outside(cell, at.back()));
-    row.scale_mean += cell.empty() ? 1.0
-                                   : agents::fit_scale(agents::inset(cell, world_.def().formation.margin_m),
-                                                       at.back(), offsets_);
+    row.scale_mean += cell.empty()
+                          ? 1.0
+                          : agents::fit_scale(agents::inset(cell, world_.def().formation.margin_m),
+                                              at.back(), offsets_);
   }
   if (leaders > 0) row.scale_mean /= static_cast<double>(leaders);
   for (std::size_t f = 0; f < followers; ++f) {
@@ -97,8 +98,8 @@ void FormationRecorder::write_followers(const std::string& path) const {
   OutputFile out(path);
   out.print("t_s,follower,group,x,y,slot_x,slot_y\n");
   for (const FollowerRow& r : rows_)
-    out.print("{},{},{},{},{},{},{}\n", r.t_s, r.follower, r.group, r.position.x(),
-              r.position.y(), r.slot.x(), r.slot.y());
+    out.print("{},{},{},{},{},{},{}\n", r.t_s, r.follower, r.group, r.position.x(), r.position.y(),
+              r.slot.x(), r.slot.y());
   out.close();
 }
 
@@ -110,8 +111,7 @@ nlohmann::json FormationRecorder::summary() const {
                       {"shape", kShapes[static_cast<int>(def.shape)]},
                       {"followers", world_.follower_count()}};
   double error_mean = 0, error_max = 0, between = std::numeric_limits<double>::infinity(),
-         within = between, outside_follower = 0, outside_leader = 0, outside_known = 0,
-         scale = 0;
+         within = between, outside_follower = 0, outside_leader = 0, outside_known = 0, scale = 0;
   for (const FormationSample& s : samples_) {
     error_mean += s.error_mean;
     error_max = std::max(error_max, s.error_max);
@@ -132,10 +132,9 @@ nlohmann::json FormationRecorder::summary() const {
   j["outside_cell_follower_max"] = outside_follower;
   j["outside_cell_leader_max"] = outside_leader;
   j["outside_known_cell_max"] = outside_known;
-  j["outside_cell_share"] =
-      follower_samples_ > 0
-          ? static_cast<double>(outside_samples_) / static_cast<double>(follower_samples_)
-          : 0.0;
+  j["outside_cell_share"] = follower_samples_ > 0 ? static_cast<double>(outside_samples_) /
+                                                        static_cast<double>(follower_samples_)
+                                                  : 0.0;
   // What keeping formation cost: the FORMATION messages and the energy they took.
   const net::Radio& radio = world_.radio();
   const net::MessageType type = agents::formation_message_type();

@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scenarios/loader/reader.hpp"
+#include "scenarios/sweep/sweep_report.hpp"
 
 namespace masnet::scenarios {
 
@@ -59,6 +60,8 @@ struct SweepDef {
   std::vector<std::string> parameters;
   std::string output_dir;  ///< relative to the working directory; --out replaces it
   bool keep_runs = false;  ///< write runs/<run_id>/ run directories
+  /// `report.reference_lines`: each line's `x` resolved to an axis name.
+  std::vector<SweepReferenceLine> reference_lines;
 };
 
 /// One run of a sweep.

@@ -83,8 +83,8 @@ YAML::Node child(const YAML::Node& map, const std::string& key) {
 // ---- Reading a sweep file ----------------------------------------------------------------------
 
 void SweepParser::check_top_keys(const YAML::Node& root) {
-  static const std::vector<std::string> known = {"name",     "description", "base", "seeds", "set",
-                                                 "variants", "vary",        "zip",  "output"};
+  static const std::vector<std::string> known = {
+      "name", "description", "base", "seeds", "set", "variants", "vary", "zip", "output", "report"};
   std::set<std::string> seen;
   for (auto it = root.begin(); it != root.end(); ++it) {
     const std::string key = it->first.IsScalar() ? it->first.Scalar() : "?";
@@ -95,7 +95,7 @@ void SweepParser::check_top_keys(const YAML::Node& root) {
     if (std::find(known.begin(), known.end(), key) != known.end()) continue;
     std::string message = "unknown key '" + key +
                           "' in a sweep file (allowed: base, seeds, set, "
-                          "variants, vary, zip, output, name, description)";
+                          "variants, vary, zip, output, report, name, description)";
     if (auto guess = closest(key, known)) message += " (did you mean '" + *guess + "'?)";
     error(it->first, key, message);
   }
@@ -347,6 +347,7 @@ SweepLoad SweepParser::parse(const std::string& text) {
   read_set(child(root, "set"));
   read_variants(child(root, "variants"));
   read_vary_and_zip(child(root, "vary"), child(root, "zip"));
+  read_report(child(root, "report"));
   for (const char* text_key : {"name", "description"}) {
     const YAML::Node n = child(root, text_key);
     if (n.IsDefined() && !n.IsScalar())

@@ -1,6 +1,7 @@
 #pragma once
 // Shared by the sweep's own files only: the parser of sweep files (sweep_parser.cpp, its axes in
-// sweep_parser_axes.cpp) and the hash that names base scenarios and runs (sweep_expansion.cpp).
+// sweep_parser_axes.cpp, its `report` in sweep_parser_report.cpp) and the hash that names base
+// scenarios and runs (sweep_expansion.cpp).
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -58,6 +59,8 @@ class SweepParser {
   // One varied key: its values, or nothing (error reported).
   std::optional<std::vector<json>> read_values(const std::string& key, const YAML::Node& node);
   void read_vary_and_zip(const YAML::Node& vary, const YAML::Node& zip);
+  // `report` (sweep_parser_report.cpp), after the axes are known.
+  void read_report(const YAML::Node& node);
   // The number of runs, from the axes' sizes, before anything is expanded.
   void check_run_count(const YAML::Node& root);
   void probe();

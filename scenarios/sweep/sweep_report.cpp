@@ -104,6 +104,7 @@ td.num { text-align: right; white-space: nowrap; font-variant-numeric: tabular-n
 pre { white-space: pre-wrap; margin: 0; font-size: 0.9em; }
 dl { display: grid; grid-template-columns: max-content auto; gap: 0.2em 1em; }
 dt { font-weight: bold; } dd { margin: 0; }
+figure img { max-width: 100%; height: auto; border: 1px solid #ddd; }
 )";
 
 constexpr const char* kSortScript = R"(
@@ -358,6 +359,19 @@ std::string render_sweep_report(const SweepReportInput& in) {
         "one series per combination of the other parameters. " +
         about_charts + "</p>\n";
     html += "<div class=\"charts\">\n" + canvases + "</div>\n";
+  }
+
+  // The static figures (metrics with reference lines), embedded like a run report's figures.
+  if (!in.figures.empty()) {
+    html += "<h2>Sensitivity figures</h2>\n";
+    for (const SweepFigure& f : in.figures) {
+      const std::string uri = figure_data_uri(in.figures_dir, f.stem);
+      html += "<figure id=\"figure-" + escape_html(f.stem) + "\">\n";
+      html += uri.empty() ? "<p class=\"note\">missing figure " + escape_html(f.stem) + "</p>\n"
+                          : "<img src=\"" + uri + "\" alt=\"" + escape_html(f.caption) + "\">\n";
+      html += "<figcaption>" + escape_html(f.caption) + " (" + escape_html(f.stem) +
+              ".png, .svg, .pdf)</figcaption>\n</figure>\n";
+    }
   }
 
   // Failed runs, with the loader's or the run's message.

@@ -18,6 +18,21 @@
 
 namespace masnet::scenarios {
 
+/// A horizontal line across a metric's sensitivity figure: `report.reference_lines` of a sweep
+/// file (docs/sweeps.md), e.g. a value a paper reports.
+struct SweepReferenceLine {
+  std::string metric;  ///< a key of sweep_report_metrics()
+  double value = 0;    ///< in the metric's units
+  std::string label;   ///< written above the line; empty: "reference <value>"
+  std::string x;       ///< the varied factor on the x axis (an axis name)
+};
+
+/// A figure written beside report.html (`<stem>`.png, .svg and .pdf) and embedded in it.
+struct SweepFigure {
+  std::string stem;
+  std::string caption;
+};
+
 /// One factor of the sweep as the report shows it.
 struct SweepReportAxis {
   std::string name;                 ///< "radio.loss", "variant", first key of a zip group
@@ -48,6 +63,10 @@ struct SweepReportInput {
   /// The Chart.js UMD build to inline; empty: the same search as a run's report
   /// ($MASNET_CHARTJS, then /usr/share/javascript/chart.js/).
   std::filesystem::path chartjs;
+  std::vector<SweepReferenceLine> reference_lines;
+  /// Figures already written in `figures_dir` (write_sensitivity_figures), embedded as images.
+  std::vector<SweepFigure> figures;
+  std::filesystem::path figures_dir;
 };
 
 /// A metric the report compares: its dotted summary key and a title with units.

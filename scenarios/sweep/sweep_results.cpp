@@ -19,6 +19,7 @@
 #include "scenarios/output/output_file.hpp"
 #include "scenarios/run/run_directory.hpp"
 #include "scenarios/sweep/sweep.hpp"
+#include "scenarios/sweep/sweep_figures.hpp"
 #include "scenarios/sweep/sweep_report.hpp"
 #include "scenarios/sweep/sweep_statistics.hpp"
 
@@ -519,6 +520,9 @@ SweepCounts SweepSession::finish() {
     }
   }
   report.total_runs = runs_.size();
+  report.reference_lines = sweep_.reference_lines;
+  report.figures = write_sensitivity_figures(report, out);
+  report.figures_dir = out;
   const fs::path tmp = out / "report.html.partial";
   try {
     write_file(tmp, render_sweep_report(report));

@@ -61,9 +61,10 @@ struct Group {
     }
   }
 
-  void run(double duration_s, const Vec2& leader, const std::function<ConvexPolygon(double)>& cell_at,
-           double watch_step_s,
-           const std::function<void(double, const std::vector<Vec2>&, const ConvexPolygon&)>& watch) {
+  void run(
+      double duration_s, const Vec2& leader, const std::function<ConvexPolygon(double)>& cell_at,
+      double watch_step_s,
+      const std::function<void(double, const std::vector<Vec2>&, const ConvexPolygon&)>& watch) {
     const double period = def.state_period_s;
     ConvexPolygon cell = cell_at(0.0);
     double next_watch = 0.0;
@@ -77,8 +78,12 @@ struct Group {
         controllers[k].hear(t, FormationState{0, -1, leader, Vec2{0, 0}, leader, cell});
         for (std::size_t j = 0; j < controllers.size(); ++j)
           if (j != k)
-            controllers[k].hear(t, FormationState{0, static_cast<std::int32_t>(j), now[j].position,
-                                                  now[j].velocity, now[j].position, {}});
+            controllers[k].hear(t, FormationState{0,
+                                                  static_cast<std::int32_t>(j),
+                                                  now[j].position,
+                                                  now[j].velocity,
+                                                  now[j].position,
+                                                  {}});
       }
       for (std::size_t k = 0; k < controllers.size(); ++k)
         if (auto target = controllers[k].target(t, now[k]))
@@ -107,10 +112,10 @@ TEST_CASE("formation shapes: line, wedge and circle keep the spacing between nei
     CHECK(d.y() == 0.0);
   def.shape = FormationShape::wedge;
   auto wedge = agents::formation_offsets(def);
-  CHECK(wedge[0].norm() == Approx(0.05));                   // first rank: spacing from the leader
-  CHECK((wedge[2] - wedge[0]).norm() == Approx(0.05));       // along an arm: spacing
-  CHECK(wedge[0].x() == Approx(-wedge[1].x()));              // symmetric
-  CHECK(wedge[0].y() < 0.0);                                 // behind the leader (−y)
+  CHECK(wedge[0].norm() == Approx(0.05));               // first rank: spacing from the leader
+  CHECK((wedge[2] - wedge[0]).norm() == Approx(0.05));  // along an arm: spacing
+  CHECK(wedge[0].x() == Approx(-wedge[1].x()));         // symmetric
+  CHECK(wedge[0].y() < 0.0);                            // behind the leader (−y)
   def.shape = FormationShape::circle;
   auto circle = agents::formation_offsets(def);
   for (std::size_t k = 0; k < circle.size(); ++k) {
@@ -157,13 +162,14 @@ TEST_CASE("formation control: with a static leader the followers settle in their
   Group group(def, {Vec2{0.3, 0.3}, Vec2{0.6, 0.7}, Vec2{0.45, 0.55}});
   const auto offsets = agents::formation_offsets(def);
   std::vector<double> error_at;
-  group.run(20.0, leader, [](double) { return protocols::rectangle(0, 0, 1, 1); }, 1.0,
-            [&](double, const std::vector<Vec2>& p, const ConvexPolygon&) {
-              double worst = 0.0;
-              for (std::size_t k = 0; k < p.size(); ++k)
-                worst = std::max(worst, (p[k] - (leader + offsets[k])).norm());
-              error_at.push_back(worst);
-            });
+  group.run(
+      20.0, leader, [](double) { return protocols::rectangle(0, 0, 1, 1); }, 1.0,
+      [&](double, const std::vector<Vec2>& p, const ConvexPolygon&) {
+        double worst = 0.0;
+        for (std::size_t k = 0; k < p.size(); ++k)
+          worst = std::max(worst, (p[k] - (leader + offsets[k])).norm());
+        error_at.push_back(worst);
+      });
   REQUIRE(error_at.size() == 20);
   CHECK(error_at.front() > 0.1);
   CHECK(error_at.back() < 1e-4);
@@ -198,8 +204,8 @@ TEST_CASE("formation control: followers stay inside a cell that shrinks around t
   CHECK(outside == 0);
   // Scaled to the last cell: the farthest slot (rank 2 on the wedge, 0.16 away) sits at the
   // inset square's edge.
-  const double expected = agents::fit_scale(agents::inset(square(12.0), def.margin_m), leader,
-                                            offsets);
+  const double expected =
+      agents::fit_scale(agents::inset(square(12.0), def.margin_m), leader, offsets);
   CHECK(expected < 0.5);
   CHECK(group.controllers[0].scale() == Approx(expected));
 }

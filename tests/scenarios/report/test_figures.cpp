@@ -296,8 +296,9 @@ TEST_CASE("A diffusion run gets the pollution curve and field maps with robots",
   const fs::path report = render_run_directory(dir);
   CHECK(report == fs::absolute(dir / "report.html"));
   for (const char* stem :
-       {"pollution", "field_t2.6", "field_t3.1", "snapshot_t2.6", "snapshot_t3.1", "trajectories",
-        "coverage_cost", "radius", "messages", "energy", "correctness"}) {
+       {"pollution", "field_t2.6", "field_t3.1", "pollution_surface_t2.6", "pollution_surface_t3.1",
+        "snapshot_t2.6", "snapshot_t3.1", "trajectories", "coverage_cost", "radius", "messages",
+        "energy", "correctness"}) {
     check_png(dir / "figures" / (std::string(stem) + ".png"));
     check_svg(dir / "figures" / (std::string(stem) + ".svg"));
   }

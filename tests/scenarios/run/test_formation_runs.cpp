@@ -19,9 +19,8 @@ ScenarioDef formation_scenario(std::uint64_t seed, std::vector<std::string> extr
   std::vector<std::string> overrides = {"duration=2", "sensors.nx=20", "sensors.ny=20",
                                         "output.snapshots=[]", "output.replay=false"};
   overrides.insert(overrides.end(), extra.begin(), extra.end());
-  LoadResult loaded = load_scenario(std::string(MASNET_SOURCE_DIR) +
-                                        "/scenarios/paper/formation_tracking.yaml",
-                                    overrides, seed);
+  LoadResult loaded = load_scenario(
+      std::string(MASNET_SOURCE_DIR) + "/scenarios/paper/formation_tracking.yaml", overrides, seed);
   INFO((loaded.diagnostics.empty() ? std::string() : loaded.diagnostics[0].text()));
   REQUIRE(loaded.scenario);
   return *loaded.scenario;
@@ -41,8 +40,7 @@ TEST_CASE("formation runs: robots of two groups never meet, on 20 seeds") {
   // by more than the margin on every seed (robots start on a jittered grid: seed-dependent).
   double nearest = 1.0;
   for (std::uint64_t seed = 1; seed <= 20; ++seed) {
-    const nlohmann::json summary =
-        run_formation(seed, {"robots.layout=random", "robots.count=9"});
+    const nlohmann::json summary = run_formation(seed, {"robots.layout=random", "robots.count=9"});
     const nlohmann::json& f = summary.at("formation");
     INFO("seed " << seed << ": " << f.dump());
     CHECK(f.at("groups") == 9);

@@ -180,7 +180,7 @@ TEST_CASE("A bad sweep file gets file:line:col errors", "[scenarios]") {
   CHECK(errors("base: ../paper/acoustic_tracking.yaml\nseed: 3\n") ==
         std::vector<std::string>{
             f + ":2:1: unknown key 'seed' in a sweep file (allowed: base, seeds, set, "
-                "variants, vary, zip, output, name, description) (did you mean 'seeds'?)"});
+                "variants, vary, zip, output, report, name, description) (did you mean 'seeds'?)"});
   CHECK(errors("base: ../paper/acoustic_tracking.yaml\nseeds: 0\n") ==
         std::vector<std::string>{
             f + ":2:8: seeds: expected a count between 1 and 1000000 (seeds 1..N) or a "
