@@ -95,6 +95,15 @@ double fit_scale(const ConvexPolygon& region, const Vec2& anchor,
   return std::max(scale, 0.0);
 }
 
+FormationFit fit_formation(const ConvexPolygon& cell, const Vec2& leader,
+                           const std::vector<Vec2>& offsets, double margin) {
+  if (cell.vertices.size() < 3) return {};
+  const ConvexPolygon room = inset(cell, margin);
+  if (room.empty()) return {0.0, nearest_point_in(cell, leader) - leader};
+  const Vec2 centre = nearest_point_in(room, leader);
+  return {fit_scale(room, centre, offsets), centre - leader};
+}
+
 Vec2 nearest_point_in(const ConvexPolygon& polygon, const Vec2& point) {
   if (polygon.empty() || protocols::contains(polygon, point)) return point;
   Vec2 best = polygon.vertices.front();
@@ -147,11 +156,12 @@ void FollowerController::hear(double t_s, const FormationState& state) {
       cell_ = state.cell;
       inner_ = inset(cell_, def_.margin_m);
       // Every follower of the group fits the same formation to the same message.
-      const double scale = fit_scale(inner_, state.position, offsets_);
+      const FormationFit fit = fit_formation(cell_, state.position, offsets_, def_.margin_m);
       scale_rate_per_s_ = previous && t_s > previous->t_s && !cell_.empty()
-                              ? (scale - scale_) / (t_s - previous->t_s)
+                              ? (fit.scale - scale_) / (t_s - previous->t_s)
                               : 0.0;
-      scale_ = scale;
+      scale_ = fit.scale;
+      shift_ = fit.shift;
     }
     return;
   }
@@ -167,14 +177,14 @@ Vec2 FollowerController::predicted(const Heard& heard, double now_s) const {
 
 std::optional<Vec2> FollowerController::leader_slot(double now_s) const {
   if (!leader_) return std::nullopt;
-  return predicted(*leader_, now_s) + scale_ * offsets_[slot_];
+  return predicted(*leader_, now_s) + shift_ + scale_ * offsets_[slot_];
 }
 
 std::optional<Vec2> FollowerController::target(double now_s, const MotionState& self) const {
   if (!leader_) return std::nullopt;
   const Vec2 leader = predicted(*leader_, now_s);
   const Vec2& mine = offsets_[slot_];
-  Vec2 sum = def_.leader_weight * (leader + scale_ * mine);
+  Vec2 sum = def_.leader_weight * (leader + shift_ + scale_ * mine);
   double weight = def_.leader_weight;
   for (std::size_t j = 0; j < fellows_.size(); ++j) {
     const std::optional<Heard>& fellow = fellows_[j];

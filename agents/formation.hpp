@@ -46,6 +46,16 @@ protocols::ConvexPolygon inset(const protocols::ConvexPolygon& cell, double marg
 double fit_scale(const protocols::ConvexPolygon& region, const Vec2& anchor,
                  const std::vector<Vec2>& offsets);
 
+/// Where a group's formation goes in its leader's cell: centred on the leader (shifted to the
+/// nearest point at least `margin` inside the cell when the leader stands nearer its edge) at
+/// the largest scale that keeps every slot that far inside.
+struct FormationFit {
+  double scale = 1.0;
+  Vec2 shift{0, 0};  ///< from the leader to the formation's centre
+};
+FormationFit fit_formation(const protocols::ConvexPolygon& cell, const Vec2& leader,
+                           const std::vector<Vec2>& offsets, double margin);
+
 /// The point of `polygon` nearest to `point` (`point` itself when inside).
 Vec2 nearest_point_in(const protocols::ConvexPolygon& polygon, const Vec2& point);
 
@@ -105,6 +115,7 @@ class FollowerController {
   std::vector<std::optional<Heard>> fellows_;  // [slot]
   protocols::ConvexPolygon cell_, inner_;      // the leader's cell and its inset by the margin
   double scale_ = 1.0;
+  Vec2 shift_{0, 0};
   double scale_rate_per_s_ = 0.0;  // from the last two leader messages: the cell's breathing
 };
 

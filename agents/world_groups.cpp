@@ -16,12 +16,12 @@ void World::add_followers() {
   const std::vector<protocols::Cell> cells = protocols::voronoi_cells(def_.robots, def_.domain);
   const std::uint32_t interest = 1u << static_cast<unsigned>(formation_message_type());
   for (std::size_t g = 0; g < robots_.size(); ++g) {
-    const protocols::ConvexPolygon room = inset(cells[g].polygon, formation.margin_m);
-    const double scale = fit_scale(room, def_.robots[g], offsets);
+    const FormationFit fit =
+        fit_formation(cells[g].polygon, def_.robots[g], offsets, formation.margin_m);
     for (std::size_t k = 0; k < offsets.size(); ++k) {
       const std::size_t f = followers_.size();
-      followers_.push_back(
-          std::make_unique<FollowerAgent>(*this, g, k, def_.robots[g] + scale * offsets[k]));
+      followers_.push_back(std::make_unique<FollowerAgent>(
+          *this, g, k, def_.robots[g] + fit.shift + fit.scale * offsets[k]));
       radio_.add_mobile_node(follower_node(f), follower_key(f));
       radio_.set_interest(follower_node(f), interest);
       if (def_.robot_battery_j > 0) radio_.set_battery(follower_node(f), def_.robot_battery_j);

@@ -19,11 +19,9 @@ Vec2 FormationRecorder::slot_now(std::size_t follower) const {
   const std::size_t slot = follower % offsets_.size();
   const Vec2 leader = world_.robot_state(group).position;
   const protocols::ConvexPolygon& cell = world_.robot_protocol(group).cell();
-  const double scale = cell.empty()
-                           ? 1.0
-                           : agents::fit_scale(agents::inset(cell, world_.def().formation.margin_m),
-                                               leader, offsets_);
-  return leader + scale * offsets_[slot];
+  const agents::FormationFit fit =
+      agents::fit_formation(cell, leader, offsets_, world_.def().formation.margin_m);
+  return leader + fit.shift + fit.scale * offsets_[slot];
 }
 
 void FormationRecorder::sample() {
@@ -39,10 +37,8 @@ void FormationRecorder::sample() {
     const protocols::ConvexPolygon& cell = world_.robot_protocol(g).cell();
     row.outside_leader_max =
         std::max(row.outside_leader_max, agents::distance_outside(cell, at.back()));
-    row.scale_mean += cell.empty()
-                          ? 1.0
-                          : agents::fit_scale(agents::inset(cell, world_.def().formation.margin_m),
-                                              at.back(), offsets_);
+    row.scale_mean +=
+        agents::fit_formation(cell, at.back(), offsets_, world_.def().formation.margin_m).scale;
   }
   if (leaders > 0) row.scale_mean /= static_cast<double>(leaders);
   for (std::size_t f = 0; f < followers; ++f) {
