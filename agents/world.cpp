@@ -277,6 +277,7 @@ protocols::RobotCell World::oracle_cell(std::size_t robot, double first_radius) 
   std::vector<NodeId> site_nodes;
   std::vector<std::uint32_t> candidates;
   protocols::Cell cell;
+  std::uint64_t clips = 0;
   for (;;) {
     found.clear();
     radio_.for_each_mobile_within(p, r, [&](NodeId id) {
@@ -302,11 +303,13 @@ protocols::RobotCell World::oracle_cell(std::size_t robot, double first_radius) 
     for (std::uint32_t i = 1; i < sites.size(); ++i)
       candidates.push_back(i);
     cell = protocols::voronoi_cell(0, sites, candidates, def_.domain);
+    clips += cell.half_plane_clips;
     if (r >= 2.0 * protocols::max_vertex_distance(cell.polygon, p) || r >= span) break;
     r *= 2.0;
   }
   protocols::RobotCell out;
   out.polygon = std::move(cell.polygon);
+  out.half_plane_clips = clips;
   for (std::uint32_t i : cell.neighbours)
     out.neighbours.push_back(site_nodes[i]);
   std::sort(out.neighbours.begin(), out.neighbours.end());
@@ -314,9 +317,11 @@ protocols::RobotCell World::oracle_cell(std::size_t robot, double first_radius) 
 }
 
 std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
-                                     protocols::CentroidAccumulator& accumulator) {
+                                     protocols::CentroidAccumulator& accumulator,
+                                     protocols::GeometryWork* work) {
   if (cell.empty()) return 0;
   std::uint32_t inside = 0;
+  std::uint64_t decided = 0;  // sensors whose membership was settled: the point tests
   const std::size_t first_sensor = robots_.size();
   auto take = [&](NodeId id, const Vec2& s) {
     if (dead_sensors_ > 0 && !radio_.alive(id)) return;  // a sensor that is down reads nothing
@@ -333,8 +338,10 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
     }
     sensor_grid_.for_each_within(0.5 * (lo + hi), 0.5 * (hi - lo).norm(),
                                  [&](NodeId id, const Vec2& s, double) {
+                                   ++decided;
                                    if (protocols::contains(cell, s)) take(id, s);
                                  });
+    if (work) work->point_in_cell_tests += decided;
     return inside;
   }
   // Sensor rows: the cell meets each row in one interval, whose ends the slicer gives within
@@ -386,6 +393,8 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
       // Candidates: x in [xl − margin, xr + margin] (and a hair more on the right, tested).
       first = sensor_lines_.first_at_or_after(row.line, xl - margin);
       last = sensor_lines_.first_at_or_after(row.line, xr + 2.0 * margin);
+      // Every candidate is settled: by the ends' tests or, between them, by convexity.
+      decided += last > first ? last - first : 0;
       auto inside_at = [&](std::uint32_t k) {
         return slicer_.contains_on_row(cell.vertices, Vec2{sensor_lines_.x(k), y}, xl, xr);
       };
@@ -395,6 +404,7 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
       while (last > first && !inside_at(last - 1))
         --last;
     }
+    if (row.sure) decided += last > first ? last - first : 0;  // the row at once: all inside
     if (first >= last) continue;
     // Without noise and with equal areas a reading needs only the position: evaluate the row in
     // one call and stream through its coordinates, never touching per-sensor records.
@@ -418,6 +428,7 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
     for (std::uint32_t k = first; k < last; ++k)
       take(ids[k], Vec2{sensor_lines_.x(k), y});
   }
+  if (work) work->point_in_cell_tests += decided;
   return inside;
 }
 

@@ -134,9 +134,12 @@ class World final : public net::RadioListener,
   /// from `first_radius` (a guess; <= 0: one that suits a uniform spread of the robots).
   protocols::RobotCell oracle_cell(std::size_t robot, double first_radius = 0.0);
   /// Adds every sensor inside `cell` with its reading now to `accumulator` (the oracle's
-  /// sensing pass; no messages); returns how many.
+  /// sensing pass; no messages); returns how many. With `work`, counts the sensors whose
+  /// membership was decided: each exact test, and on sensor rows each sensor of a row's
+  /// candidate interval (its inside part is decided at once; docs/protocols.md).
   std::uint32_t read_sensors_in(const protocols::ConvexPolygon& cell,
-                                protocols::CentroidAccumulator& accumulator) override;
+                                protocols::CentroidAccumulator& accumulator,
+                                protocols::GeometryWork* work = nullptr) override;
   // ---- protocols::GroundTruth (the oracle and recorders only) -------------------------------
   protocols::RobotCell true_cell(std::size_t robot) override { return oracle_cell(robot); }
   /// Positions of the field's moving entities now (targets, bump centres).
@@ -149,6 +152,10 @@ class World final : public net::RadioListener,
   /// Neutraliser a robot's dispenser has released so far (rate·s, applied to the field).
   double neutraliser_used(std::size_t robot) const { return neutraliser_used_[robot]; }
   std::uint64_t sensor_readings() const { return readings_taken_; }
+  /// Point-in-cell tests the sensors made answering SENSEs so far (their protocol's count).
+  std::uint64_t sensor_point_in_cell_tests() const {
+    return sensor_protocol_->point_in_cell_tests();
+  }
 
   // ---- Robot groups (docs/formations.md): robot g leads group g --------------------------------
   /// Followers, group by group (follower f is slot f % (size − 1) of group f / (size − 1)); their

@@ -222,6 +222,7 @@ class CellBuilder {
         std::max(max_abs_coordinate(domain.vertices), std::max(std::abs(p_.x()), std::abs(p_.y())));
     clipper_.reset(domain.vertices, kDomainLabel);
     reach_sq_ = clipper_.max_distance_sq(p_);
+    clips_ = 0;
   }
   bool empty() const { return clipper_.empty(); }
   double reach_sq() const { return reach_sq_; }
@@ -235,6 +236,7 @@ class CellBuilder {
     }
     // The bisector lies |q − p|/2 from p; beyond the farthest vertex it cannot cut.
     if ((q - p_).squaredNorm() > 4.0 * reach_sq_) return true;
+    ++clips_;
     if (clipper_.clip(bisector_half_plane(p_, q), c, scale_)) {
       reach_sq_ = clipper_.max_distance_sq(p_);
     } else {
@@ -254,6 +256,7 @@ class CellBuilder {
   void add_disk(double radius) {
     if (clipper_.empty() || !(radius < kNoDisk) || reach_sq_ <= radius * radius) return;
     for (const Vec2& u : disk_normals()) {
+      ++clips_;
       clipper_.clip(HalfPlane{u, u.dot(p_) + radius}, kDiskLabel, scale_);
       if (clipper_.empty()) break;
     }
@@ -263,6 +266,7 @@ class CellBuilder {
   Cell finish() const {
     Cell cell;
     cell.polygon.vertices = clipper_.points();
+    cell.half_plane_clips = clips_;
     for (std::uint32_t label : clipper_.labels()) {
       if (label == kDiskLabel) {
         cell.truncated = true;
@@ -282,6 +286,7 @@ class CellBuilder {
   std::span<const Vec2> sites_;
   Vec2 p_ = Vec2::Zero();
   double scale_ = 0.0, reach_sq_ = 0.0;
+  std::uint32_t clips_ = 0;  // since start(): the cell's computation-load count
 };
 
 // The sign of a real number as -1, 0, +1.

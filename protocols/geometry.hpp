@@ -84,6 +84,23 @@ struct Cell {
   std::vector<std::uint32_t> neighbours;
   /// True when the disk polygon contributes an edge: the cell was cut by the radius.
   bool truncated = false;
+  /// Half-plane clips the builder performed: one per bisector or disk side it clipped by (a
+  /// candidate dismissed by the distance test, a coincident one or a repeat of the site is
+  /// none). The computation-load count of docs/protocols.md.
+  std::uint32_t half_plane_clips = 0;
+};
+
+/// Geometric work of one update (docs/protocols.md, "Computation load"): plain counters the
+/// protocol fills as it works, zero for a protocol that does not.
+struct GeometryWork {
+  std::uint64_t half_plane_clips = 0;     ///< clips of a cell by a bisector or a disk side
+  std::uint64_t point_in_cell_tests = 0;  ///< readings whose membership of the cell was decided
+
+  GeometryWork& operator+=(const GeometryWork& other) {
+    half_plane_clips += other.half_plane_clips;
+    point_in_cell_tests += other.point_in_cell_tests;
+    return *this;
+  }
 };
 
 /// The cell of sites[site]: domain ∩ disk(sites[site], disk_radius) ∩ the bisector

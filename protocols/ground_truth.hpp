@@ -19,6 +19,8 @@ namespace masnet::protocols {
 struct RobotCell {
   ConvexPolygon polygon;
   std::vector<sim::NodeId> neighbours;  ///< ascending
+  /// Half-plane clips spent finding it: every cell built on the way (Cell::half_plane_clips).
+  std::uint64_t half_plane_clips = 0;
 };
 
 class GroundTruth {
@@ -27,8 +29,9 @@ class GroundTruth {
   /// The exact Voronoi cell of `robot` (a robot index) among the true robot positions now.
   virtual RobotCell true_cell(std::size_t robot) = 0;
   /// Adds every sensor inside `cell` with its reading now to `accumulator`; returns how many.
-  virtual std::uint32_t read_sensors_in(const ConvexPolygon& cell,
-                                        CentroidAccumulator& accumulator) = 0;
+  /// With `work`, adds to its point_in_cell_tests the sensors whose membership was decided.
+  virtual std::uint32_t read_sensors_in(const ConvexPolygon& cell, CentroidAccumulator& accumulator,
+                                        GeometryWork* work = nullptr) = 0;
 };
 
 using TruthfulRobotFactory =

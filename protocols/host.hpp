@@ -80,6 +80,9 @@ struct UpdateSummary {
   Vec2 centroid{0, 0};             ///< the new target (or the kept one)
   std::uint32_t readings = 0;      ///< readings inside the cell used for the centroid
   MessageTallies messages;
+  /// Clips and point-in-cell tests of this update (docs/protocols.md, "Computation load"); a
+  /// protocol that does not count leaves them zero.
+  GeometryWork geometry;
   /// The protocol's own per-update fields, in the order of its definition's update_columns
   /// (extra columns of updates.csv).
   std::vector<double> extra;

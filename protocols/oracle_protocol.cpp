@@ -33,7 +33,8 @@ void OracleProtocol::update() {
   log_update_start(log_, record, radius());
   RobotCell truth = truth_.true_cell(robot_);
   CentroidAccumulator accumulator(context_.scaling);
-  record.readings = truth_.read_sensors_in(truth.polygon, accumulator);
+  record.readings = truth_.read_sensors_in(truth.polygon, accumulator, &record.geometry);
+  record.geometry.half_plane_clips += truth.half_plane_clips;
   // What Cortés' rule would need to certify this cell.
   record.radius = 2.0 * max_vertex_distance(truth.polygon, record.position);
   record.cell = std::move(truth.polygon);

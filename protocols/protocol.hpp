@@ -58,6 +58,10 @@ class SensorProtocol {
   virtual ~SensorProtocol() = default;
   virtual void on_frame(SensorHost& host, const net::Frame& frame) = 0;
   virtual void on_timer(SensorHost& host, std::uint32_t kind) = 0;
+  /// Point-in-cell tests the sensors made so far in this run (deciding whether to answer a
+  /// robot's cell): 0 for a protocol that does not count (docs/protocols.md, "Computation
+  /// load").
+  virtual std::uint64_t point_in_cell_tests() const { return 0; }
 };
 
 }  // namespace masnet::protocols

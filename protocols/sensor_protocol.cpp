@@ -23,6 +23,7 @@ void PaperSensorProtocol::on_frame(SensorHost& host, const net::Frame& frame) {
     }
     // Not logged: this runs for every sensor that hears a SENSE, where even a level test
     // costs a measurable share of a run (docs/logging.md).
+    ++point_in_cell_tests_;
     if (!sense_cell_.contains(host.position())) return;
     if (reply_jitter_s_ <= 0) {
       host.unicast(sense->robot,

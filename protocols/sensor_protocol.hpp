@@ -41,6 +41,7 @@ class PaperSensorProtocol final : public SensorProtocol {
 
   void on_frame(SensorHost& host, const net::Frame& frame) override;
   void on_timer(SensorHost& host, std::uint32_t kind) override;
+  std::uint64_t point_in_cell_tests() const override { return point_in_cell_tests_; }
   const SensorState& state(std::size_t sensor) const { return states_[sensor]; }
 
  private:
@@ -63,6 +64,7 @@ class PaperSensorProtocol final : public SensorProtocol {
   ConvexMembership sense_cell_;
   NodeId sense_source_ = sim::kNoNode;
   std::uint64_t sense_number_ = 0;
+  std::uint64_t point_in_cell_tests_ = 0;  // one per SENSE a sensor heard
 };
 
 }  // namespace masnet::protocols

@@ -184,6 +184,8 @@ void VoronoiProtocol::finish_update(bool truncated) {
   CentroidAccumulator accumulator(context_.scaling);
   cell_readings_.clear();
   const bool all_inside = cell_is_sensed();
+  // Each reading takes one point test unless the cell is still the sensed one (then none).
+  if (!all_inside) record_.geometry.point_in_cell_tests += readings_.size();
   for (const HeardReading& r : readings_)
     if (all_inside || contains(cell_.polygon, r.position)) {
       accumulator.add(r.position, r.value, host_.sensor_area(r.sensor));
@@ -192,10 +194,13 @@ void VoronoiProtocol::finish_update(bool truncated) {
     }
   record_.radius = radius_m_;
   record_.truncated = truncated;
-  record_.cell =
-      truncated
-          ? voronoi_cell(0, std::vector<Vec2>{position_}, {}, cell_.polygon, radius_m_).polygon
-          : cell_.polygon;
+  if (truncated) {
+    Cell disk_cut = voronoi_cell(0, std::vector<Vec2>{position_}, {}, cell_.polygon, radius_m_);
+    record_.geometry.half_plane_clips += disk_cut.half_plane_clips;
+    record_.cell = std::move(disk_cut.polygon);
+  } else {
+    record_.cell = cell_.polygon;
+  }
   for (std::uint32_t index : cell_.neighbours)
     record_.neighbours.push_back(neighbours_[index - 1].robot);
   for (const HeardNeighbour& n : neighbours_)
@@ -304,16 +309,17 @@ bool VoronoiProtocol::cell_is_sensed() const {
   return cell_.polygon.vertices == sensed_cell_;
 }
 
-double VoronoiProtocol::farthest_reading_in_cell() const {
+double VoronoiProtocol::farthest_reading_in_cell() {
   double farthest = 0.0;
   const bool all_inside = cell_is_sensed();
+  if (!all_inside) record_.geometry.point_in_cell_tests += readings_.size();
   for (const HeardReading& r : readings_)
     if (all_inside || contains(cell_.polygon, r.position))
       farthest = std::max(farthest, (r.position - position_).norm());
   return farthest;
 }
 
-Cell VoronoiProtocol::compute_cell() const {
+Cell VoronoiProtocol::compute_cell() {
   std::vector<Vec2> sites{position_};
   for (const HeardNeighbour& n : neighbours_)
     sites.push_back(n.position);
@@ -324,7 +330,9 @@ Cell VoronoiProtocol::compute_cell() const {
     for (std::uint32_t i = 1; i < sites.size(); ++i)
       candidates.push_back(i);
   }
-  return voronoi_cell(0, sites, candidates, context_.domain);
+  Cell cell = voronoi_cell(0, sites, candidates, context_.domain);
+  record_.geometry.half_plane_clips += cell.half_plane_clips;
+  return cell;
 }
 
 }  // namespace masnet::protocols

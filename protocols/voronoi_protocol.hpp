@@ -100,10 +100,11 @@ class VoronoiProtocol final : public RobotProtocol {
   void decay_range();
 
   void answer_discover(const net::Discover& discover);
-  double farthest_reading_in_cell() const;
+  /// Counts its point tests in the update's record, as compute_cell() counts its clips.
+  double farthest_reading_in_cell();
   /// True while the cell is the one sent with the last SENSE: every reading is then inside.
   bool cell_is_sensed() const;
-  Cell compute_cell() const;
+  Cell compute_cell();
 
   RobotHost& host_;
   ProtocolParams params_;

@@ -12,6 +12,7 @@
 
 #include "scenarios/output/output_file.hpp"
 #include "scenarios/report/fault_tables.hpp"
+#include "scenarios/report/geometry_table.hpp"
 #include "scenarios/report/message_table.hpp"
 #include "scenarios/report/replay_section.hpp"
 
@@ -463,9 +464,11 @@ fs::path write_report(const RunData& run, const std::vector<FigureInfo>& figures
                        .dump(2, ' ', false, json::error_handler_t::replace))
     << "</pre>\n</details>\n</section>\n";
 
-  h << "<section id=\"messages\">\n<h2>Messages and energy</h2>\n<h3>Messages by type</h3>\n"
+  h << "<section id=\"messages\">\n<h2>Messages, energy and computation</h2>\n<h3>Messages by "
+       "type</h3>\n"
     << messages_table(s) << "<h3>Energy by category</h3>\n"
-    << energy_table(s) << "</section>\n";
+    << energy_table(s) << "<h3>Computation per update</h3>\n"
+    << computation_table(s) << "</section>\n";
 
   h << "<section id=\"protocol\">\n<h2>Protocol</h2>\n"
     << (s.contains("protocol") ? key_value_table(s["protocol"], "protocol-statistics")

@@ -14,6 +14,7 @@
 #include "scenarios/run/contention_outputs.hpp"
 #include "scenarios/run/curve_summary.hpp"
 #include "scenarios/run/energy_outputs.hpp"
+#include "scenarios/run/geometry_outputs.hpp"
 
 namespace masnet::scenarios {
 namespace {
@@ -325,7 +326,7 @@ void Recorder::write_updates(const std::string& path) const {
   OutputFile out(path);
   out.print(
       "robot,update,t_start_s,t_end_s,latency_s,rounds,radius,truncated,delayed,no_mass,readings,"
-      "neighbours,correct,correct_heard,cx,cy");
+      "neighbours,correct,correct_heard,cx,cy,half_plane_clips,point_in_cell_tests");
   const std::size_t types = net::message_type_count();
   for (std::size_t t = 0; t < types; ++t)
     out.print(",{0}_count,{0}_bytes", net::name_of(t));
@@ -336,11 +337,12 @@ void Recorder::write_updates(const std::string& path) const {
   out.print("\n");
   for (const UpdateRow& u : updates_) {
     const auto& r = u.record;
-    out.print("{},{},{},{},{},{},{},{:d},{:d},{:d},{},{},{:d},{:d},{},{}", sim::index(r.robot),
-              r.update, sim::to_seconds(r.started), sim::to_seconds(r.finished),
-              sim::to_seconds(r.finished - r.started), r.rounds, r.radius, r.truncated, r.delayed,
-              r.no_mass, r.readings, r.neighbours.size(), u.correct, u.correct_heard,
-              r.centroid.x(), r.centroid.y());
+    out.print("{},{},{},{},{},{},{},{:d},{:d},{:d},{},{},{:d},{:d},{},{},{},{}",
+              sim::index(r.robot), r.update, sim::to_seconds(r.started),
+              sim::to_seconds(r.finished), sim::to_seconds(r.finished - r.started), r.rounds,
+              r.radius, r.truncated, r.delayed, r.no_mass, r.readings, r.neighbours.size(),
+              u.correct, u.correct_heard, r.centroid.x(), r.centroid.y(),
+              r.geometry.half_plane_clips, r.geometry.point_in_cell_tests);
     for (std::size_t t = 0; t < types; ++t)
       out.print(",{},{}", r.messages[t].count, r.messages[t].bytes);
     for (std::size_t k = 0; k < extra.size(); ++k) {
@@ -513,8 +515,10 @@ nlohmann::json Recorder::summary_metrics() const {
   const std::size_t types = net::message_type_count();
   std::vector<double> per_type(types, 0.0);
   double update_bytes = 0;
+  protocols::GeometryWork work;
   for (const UpdateRow& u : updates_) {
     const auto& r = u.record;
+    work += r.geometry;
     rounds += r.rounds;
     rounds_max = std::max(rounds_max, r.rounds);
     const double l = sim::to_seconds(r.finished - r.started);
@@ -548,6 +552,7 @@ nlohmann::json Recorder::summary_metrics() const {
     if (per_type[t] > 0) per_update[std::string(net::name_of(t))] = per_type[t] / div;
   p["messages_per_update"] = per_update;
   p["bytes_per_update"] = update_bytes / div;
+  p["geometry"] = geometry_summary(work, world_.sensor_point_in_cell_tests(), updates_.size());
   j["protocol"] = p;
 
   if (world_.diffusion() && !samples_.empty()) j["pollution"] = pollution_summary();

@@ -60,3 +60,26 @@ TEST_CASE("a sensor answers every SENSE whose cell holds it, and only those, SEN
   CHECK(on_edge.replied_to ==
         std::vector<NodeId>{sim::node_id(0), sim::node_id(0), sim::node_id(1)});
 }
+
+TEST_CASE("every SENSE a sensor hears costs one point-in-cell test, answered or not",
+          "[protocols]") {
+  const std::vector<Vec2> left{Vec2{0, 0}, Vec2{0.5, 0}, Vec2{0.5, 1}, Vec2{0, 1}};
+  protocols::PaperSensorProtocol protocol(0.01, 1);
+  CHECK(protocol.point_in_cell_tests() == 0);
+  FakeSensorHost inside(Vec2{0.25, 0.5}), outside(Vec2{0.75, 0.5});
+  std::uint64_t heard = 0;
+  for (std::uint64_t number = 1; number <= 3; ++number)
+    for (FakeSensorHost* host : {&inside, &outside}) {
+      protocol.on_frame(*host, sense(0, number, left));
+      ++heard;
+    }
+  CHECK(inside.replied_to.size() == 3);
+  CHECK(outside.replied_to.empty());
+  CHECK(protocol.point_in_cell_tests() == heard);
+  // A POSITION is no test.
+  net::Frame position;
+  position.type = net::MessageType::position;
+  position.payload = net::Position{sim::node_id(0), Vec2{0.1, 0.1}};
+  protocol.on_frame(inside, position);
+  CHECK(protocol.point_in_cell_tests() == heard);
+}

@@ -414,3 +414,64 @@ TEST_CASE(
   CHECK(r.readings == 1);  // the reading east of the bisector is no longer in the cell
   CHECK(r.centroid == Vec2{0.25, 0.5});
 }
+
+TEST_CASE("an update counts a clip per bisector it builds and a point test per reading re-checked",
+          "[protocols]") {
+  // Four robots 0.2 away bound the cell [0.4, 0.6]²; three sensors lie inside it.
+  World w;
+  w.robots[1] = Vec2{0.7, 0.5};
+  w.robots[2] = Vec2{0.5, 0.7};
+  w.robots[3] = Vec2{0.3, 0.5};
+  w.robots[4] = Vec2{0.5, 0.3};
+  w.sensors[10] = Vec2{0.45, 0.45};
+  w.sensors[11] = Vec2{0.55, 0.45};
+  w.sensors[12] = Vec2{0.58, 0.58};
+  w.sensors[13] = Vec2{0.9, 0.9};  // outside the cell and the SENSE range
+  ProtocolParams params;
+  params.variant = VoronoiVariant::fixed_radius;
+  params.fixed_radius = 0.3;
+  FakeHost host;
+  VoronoiProtocol p(host, params, unit_square(), 0.001);
+  p.start();
+
+  // The cell the readings come back for is the one sent: the sensors decided, the robot tests
+  // nothing. Four bisectors, four clips.
+  const UpdateRecord first = run_update(host, p, w);
+  CHECK(first.readings == 3);
+  CHECK_FALSE(first.truncated);
+  CHECK(first.geometry.half_plane_clips == 4);
+  CHECK(first.geometry.point_in_cell_tests == 0);
+
+  // A fifth robot's reply comes while the sensors answer: the cell is built again from five
+  // sites (all within twice its farthest vertex: 0.15² · 2 < 4 · 0.02), and each of the three
+  // readings is tested against it; its bisector x + y = 1.15 leaves (0.58, 0.58) out.
+  REQUIRE(host.fire(p, VoronoiProtocol::kTick));
+  answer_last(host, p, w);
+  REQUIRE(host.fire(p, VoronoiProtocol::kRoundEnd));
+  REQUIRE(std::holds_alternative<net::Sense>(host.last().payload));
+  answer_last(host, p, w);
+  p.on_frame(frame(net::Neighbor{sim::node_id(5), Vec2{0.65, 0.65}}));
+  REQUIRE(host.fire(p, VoronoiProtocol::kSenseEnd));
+  const UpdateRecord& second = host.records.back();
+  CHECK(second.update == 2);
+  CHECK(second.readings == 2);
+  CHECK(second.geometry.half_plane_clips == 4 + 5);
+  CHECK(second.geometry.point_in_cell_tests == 3);
+}
+
+TEST_CASE("a cell truncated by the radius costs the disk's sides in clips", "[protocols]") {
+  // Nobody within R = 0.3: the cell is the square (no bisector), and the disk polygon cuts it
+  // side by side (every vertex of the square is farther than 0.3).
+  World w;
+  w.robots[1] = Vec2{0.9375, 0.5};
+  ProtocolParams params;
+  params.variant = VoronoiVariant::fixed_radius;
+  params.fixed_radius = 0.3;
+  FakeHost host;
+  VoronoiProtocol p(host, params, unit_square(), 0.001);
+  p.start();
+  const UpdateRecord r = run_update(host, p, w);
+  REQUIRE(r.truncated);
+  CHECK(r.geometry.half_plane_clips == static_cast<std::uint64_t>(kDiskSides));
+  CHECK(r.geometry.point_in_cell_tests == 0);
+}
