@@ -49,12 +49,12 @@ std::string computation_table(const json& summary) {
              any ? fmt::format("{:.0f}", per_update * updates) : "0",
              any ? fmt::format("{:.4g}", per_update) : "0");
   const json energy = summary.value("energy_j", json());
-  out += row("radio energy, J (tx + rx)",
-             energy.is_object() && energy.contains("radio_tx") && energy.contains("radio_rx")
-                 ? fmt::format("{:.4g}", energy.value("radio_tx", 0.0) +
-                                             energy.value("radio_rx", 0.0))
-                 : "—",
-             number(energy, "per_update", "{:.4g}"));
+  out +=
+      row("radio energy, J (tx + rx)",
+          energy.is_object() && energy.contains("radio_tx") && energy.contains("radio_rx")
+              ? fmt::format("{:.4g}", energy.value("radio_tx", 0.0) + energy.value("radio_rx", 0.0))
+              : "—",
+          number(energy, "per_update", "{:.4g}"));
   return out + "</tbody></table>\n";
 }
 

@@ -14,6 +14,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "scenarios/sweep/sweep.hpp"
+
 namespace masnet::test {
 
 inline const std::string kSweepBase =
@@ -23,6 +25,18 @@ inline const std::string kSweepBase =
 inline const char* const kTinySet =
     "set: {duration: 0.2, sensors.nx: 20, sensors.ny: 20, output.snapshots: [], output.updates: "
     "false}\n";
+
+/// The diagnostics of a sweep text that must not load (as `file:line:col: message`), the text
+/// read as if it were the file `file_name`.
+inline std::vector<std::string> sweep_errors(const std::string& text,
+                                             const std::string& file_name) {
+  scenarios::SweepLoad loaded = scenarios::load_sweep_text(text, file_name);
+  CHECK_FALSE(loaded.sweep);
+  std::vector<std::string> lines;
+  for (const auto& d : loaded.diagnostics)
+    lines.push_back(d.text());
+  return lines;
+}
 
 /// An empty path under the temporary folder for one test (removed first if it exists).
 inline std::filesystem::path fresh_dir(const std::string& name) {

@@ -147,9 +147,15 @@ const std::vector<Case> kCases = {
       "csma_knob_at_collision.yaml:5:9: radio.csma: 'csma' applies to level csma"}},
     {"snapshot_after_end.yaml",
      {"snapshot_after_end.yaml:3:23: output.snapshots[2]: must be in [0, 5] (got 7)"}},
-    {"unsupported_groups.yaml",
-     {"unsupported_groups.yaml:3:3: groups: section 'groups' is not supported by this version "
-      "of masnet"}},
+    {"top_level_groups.yaml",
+     {"top_level_groups.yaml:3:3: groups: robot groups are set under robots.groups "
+      "(docs/formations.md)"}},
+    {"groups_offsets_count.yaml",
+     {"groups_offsets_count.yaml:3:46: robots.groups.offsets: shape offsets needs one offset per "
+      "follower: size - 1 = 2, got 1"}},
+    {"groups_bad_keys.yaml",
+     {"groups_bad_keys.yaml:6:14: robots.groups.offsets: 'offsets' applies to shape offsets",
+      "groups_bad_keys.yaml:7:14: robots.groups.spacing: must be > 0 (got 0)"}},
     // Errors in a sensor file are located in that file.
     {"sensor_csv_bad_line.yaml",
      {"sensors_bad_line.csv:4:5: expected a number, got 'zero' (lines are 'x,y' or "
@@ -460,8 +466,8 @@ TEST_CASE("a bad --set override is located as --set KEY=VALUE", "[scenarios]") {
         std::vector<std::string>{
             "--set radio.lost=0.2: unknown key 'lost' in 'radio' (did you mean 'loss'?)"});
   CHECK(texts(load_scenario_text(text, "inline.yaml", {"groups.leader=0"}).diagnostics) ==
-        std::vector<std::string>{"--set groups.leader=0: groups: section 'groups' is not "
-                                 "supported by this version of masnet"});
+        std::vector<std::string>{"--set groups.leader=0: groups: robot groups are set under "
+                                 "robots.groups (docs/formations.md)"});
   CHECK(texts(load_scenario_text(text, "inline.yaml", {"duration.x=1"}).diagnostics) ==
         std::vector<std::string>{
             "--set duration.x=1: 'duration' is not a section, cannot set 'duration.x'"});

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "scenarios/sweep/sweep.hpp"
+#include "sweep_helpers.hpp"
 
 using namespace masnet::scenarios;
 namespace fs = std::filesystem;
@@ -31,12 +32,7 @@ SweepDef parse(const std::string& text) {
 }
 
 std::vector<std::string> errors(const std::string& text) {
-  SweepLoad loaded = load_sweep_text(text, kInline);
-  CHECK_FALSE(loaded.sweep);
-  std::vector<std::string> lines;
-  for (const auto& d : loaded.diagnostics)
-    lines.push_back(d.text());
-  return lines;
+  return masnet::test::sweep_errors(text, kInline);
 }
 
 std::vector<json> values_of(const SweepDef& def, std::size_t axis) {

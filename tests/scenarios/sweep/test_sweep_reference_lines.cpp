@@ -30,12 +30,7 @@ const std::string kHead =
     "  protocol.kind: [oracle, gabriel]\n";
 
 std::vector<std::string> errors(const std::string& text) {
-  SweepLoad loaded = load_sweep_text(text, kInline);
-  CHECK_FALSE(loaded.sweep);
-  std::vector<std::string> lines;
-  for (const auto& d : loaded.diagnostics)
-    lines.push_back(d.text());
-  return lines;
+  return masnet::test::sweep_errors(text, kInline);
 }
 
 }  // namespace
