@@ -150,6 +150,16 @@ nlohmann::json SceneCapture::frame(const Sample* latest) {
     targets.push_back(qy(s.y()));
   }
   f["targets"] = std::move(targets);
+  if (world_.follower_count() > 0) {  // robot groups: each follower with its group (= leader)
+    nlohmann::json followers = nlohmann::json::array();
+    for (std::size_t k = 0; k < world_.follower_count(); ++k) {
+      const Vec2 p = world_.follower_state(k).position;
+      followers.push_back(qx(p.x()));
+      followers.push_back(qy(p.y()));
+      followers.push_back(world_.follower_group(k));
+    }
+    f["followers"] = std::move(followers);
+  }
   if (raster_nx_ > 0) {
     double max_value = 0.0;
     f["raster"] = raster(max_value);

@@ -231,6 +231,32 @@
     ctx.restore();
   };
 
+  // Robot groups: each follower (x, y, its leader's index) as a small disc in its leader's
+  // colour, joined to the leader by a thin line.
+  View.prototype.drawFollowers = function (frame) {
+    var ctx = this.context, f = frame.followers || [], p = frame.p || [];
+    ctx.save();
+    for (var k = 0; k + 2 < f.length; k += 3) {
+      var g = f[k + 2], x = this.px(f[k]), y = this.py(f[k + 1]);
+      if (2 * g + 1 < p.length) {
+        ctx.beginPath();
+        ctx.moveTo(this.px(p[2 * g]), this.py(p[2 * g + 1]));
+        ctx.lineTo(x, y);
+        ctx.lineWidth = 1;
+        ctx.strokeStyle = withAlpha(this.colour(g), 0.8);
+        ctx.stroke();
+      }
+      ctx.beginPath();
+      ctx.arc(x, y, ROBOT_PX - 2, 0, 2 * Math.PI);
+      ctx.fillStyle = '#ffffff';
+      ctx.strokeStyle = this.colour(g);
+      ctx.lineWidth = 1.5;
+      ctx.fill();
+      ctx.stroke();
+    }
+    ctx.restore();
+  };
+
   View.prototype.drawRobots = function (frame, robots, down) {
     var ctx = this.context, p = frame.p || [];
     ctx.save();
@@ -294,6 +320,7 @@
     if (o.trails) this.drawTrails(frame, history, robots);
     this.drawTargets(frame);
     if (o.flashes) this.drawFlashes(frame, robots, down);
+    this.drawFollowers(frame);
     this.drawRobots(frame, robots, down);
     this.drawTime(frame);
   };

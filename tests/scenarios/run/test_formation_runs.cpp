@@ -3,7 +3,11 @@
 // the formation while followers keep to their leaders' cells.
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include "scenarios/loader/scenario.hpp"
 #include "scenarios/run/run.hpp"
@@ -88,5 +92,25 @@ TEST_CASE("formation runs: loss degrades the formation, followers keep to their 
     CHECK(f->at("outside_cell_follower_max").get<double>() < 0.01);  // robots.groups.margin
     CHECK(f->at("outside_cell_share").get<double>() < 0.01);
     CHECK(f->at("outside_cell_leader_max").get<double>() == 0.0);
+  }
+}
+
+TEST_CASE("formation runs: the replay carries each follower with its leader") {
+  Run run(formation_scenario(1, {"duration=0.5", "output.replay=true"}, kScenario));
+  run.execute();
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("masnet-formation-replay-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  run.write_files(dir.string());
+  std::ifstream in(dir / "replay.json");
+  const nlohmann::json replay = nlohmann::json::parse(in);
+  std::filesystem::remove_all(dir);
+  REQUIRE_FALSE(replay.at("frames").empty());
+  for (const nlohmann::json& frame : replay.at("frames")) {
+    const nlohmann::json& followers = frame.at("followers");
+    REQUIRE(followers.size() == 18 * 3);
+    for (std::size_t k = 0; k < 18; ++k)
+      CHECK(followers[3 * k + 2] == k / 2);  // two followers per group, group by group
   }
 }
