@@ -78,6 +78,9 @@ scenarios::RunWatcher& LiveSession::watcher() {
 }
 
 void LiveSession::serve_until_interrupted(double wall_time_s) {
+  // Ctrl-C must be ours before the line that asks for it is printed (a script reading that
+  // line may send SIGINT at once).
+  parts_->server.catch_interrupts();
   std::printf(
       "live view: the run took %.3f s of wall time, %.3f s of it held (paused, paced "
       "or waiting for a viewer)\n",

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <csignal>
+#include <future>
 
 #include <boost/asio/post.hpp>
 #include <boost/beast/core.hpp>
@@ -266,10 +267,16 @@ void Server::stop() {
   if (s.thread.joinable()) s.thread.join();
 }
 
-void Server::wait_for_interrupt() {
+void Server::catch_interrupts() {
   ServerState& s = *state_;
-  // On the server's thread, which owns the signal set.
-  asio::post(s.io, [&s] {
+  {
+    std::lock_guard lock(s.mutex);
+    if (s.interrupts_caught || s.stopped || !s.thread.joinable()) return;  // nobody to arm it
+    s.interrupts_caught = true;
+  }
+  // On the server's thread, which owns the signal set; wait until it is armed.
+  std::promise<void> armed;
+  asio::post(s.io, [&s, &armed] {
     beast::error_code ec;
     s.signals.add(SIGINT, ec);
     s.signals.add(SIGTERM, ec);
@@ -281,7 +288,14 @@ void Server::wait_for_interrupt() {
       }
       s.interrupt_cv.notify_all();
     });
+    armed.set_value();
   });
+  armed.get_future().wait();
+}
+
+void Server::wait_for_interrupt() {
+  ServerState& s = *state_;
+  catch_interrupts();
   std::unique_lock lock(s.mutex);
   s.interrupt_cv.wait(lock, [&s] { return s.interrupted; });
 }

@@ -71,7 +71,12 @@ class Server {
   void start();
   /// Closes every connection and the listener, and joins the thread. Idempotent.
   void stop();
-  /// Blocks until SIGINT or SIGTERM arrives (or `stop` is called from elsewhere).
+  /// From now on SIGINT and SIGTERM end wait_for_interrupt instead of the process; returns
+  /// once the server's thread has taken them over. Call it before telling the user to press
+  /// Ctrl-C: a signal that came in between would otherwise kill the process.
+  void catch_interrupts();
+  /// Blocks until SIGINT or SIGTERM arrives (or `stop` is called from elsewhere); catches them
+  /// first if catch_interrupts was not called.
   void wait_for_interrupt();
 
   /// To every viewer: a frame (coalesced per viewer) or a control message (kept in order).

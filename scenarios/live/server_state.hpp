@@ -66,6 +66,7 @@ struct ServerState {
   bool drain_posted = false;
   bool stopped = false;
   bool interrupted = false;
+  bool interrupts_caught = false;  // the signal set is armed (touched by the caller's thread)
   std::condition_variable interrupt_cv;
 
   /// Control messages waiting for one viewer, or for all at once, beyond which the oldest go.
