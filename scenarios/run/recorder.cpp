@@ -161,14 +161,10 @@ void Recorder::sample() {
     for (std::size_t i = 0; i < n_robots; ++i)
       row.neutraliser_used += world_.neutraliser_used(i);
   }
-  row.updates = updates_.size();
-  row.cell_correctness = updates_.empty() ? 1.0
-                                          : static_cast<double>(correct_updates_) /
-                                                static_cast<double>(updates_.size());
-  row.cell_correctness_heard = updates_.empty() ? 1.0
-                                                : static_cast<double>(correct_heard_updates_) /
-                                                      static_cast<double>(updates_.size());
-  lifetime_.fill(row, world_, updates_.size(), correct_updates_);
+  row.updates = update_stats_.count();
+  row.cell_correctness = update_stats_.cell_correctness();
+  row.cell_correctness_heard = update_stats_.cell_correctness_heard();
+  lifetime_.fill(row, world_, update_stats_.count(), update_stats_.correct());
   samples_.push_back(std::move(row));
 }
 
@@ -257,10 +253,9 @@ void Recorder::on_update(std::size_t robot, const protocols::UpdateRecord& recor
     row.correct_heard = protocols::heard_neighbours(record.position, record.heard,
                                                     world_.def().domain) == record.neighbours;
   }
-  correct_updates_ += row.correct ? 1 : 0;
-  correct_heard_updates_ += row.correct_heard ? 1 : 0;
-  if (!def_.output.updates) row.record.cell.vertices.clear();  // keep memory small
-  updates_.push_back(std::move(row));
+  update_stats_.add(row.record, row.correct, row.correct_heard);
+  // Only updates.csv needs every update: a run without it keeps the statistics alone.
+  if (def_.output.updates) updates_.push_back(std::move(row));
   if (update_listener_) update_listener_();
 }
 
@@ -501,58 +496,14 @@ nlohmann::json Recorder::summary_metrics() const {
                    {"per_sensor_max", max_sensor},
                    {"nodes_dead", dead},
                    {"by_type", energy_by_type(radio)}};
-  add_energy_details(j["energy_j"], world_, updates_.size());
+  add_energy_details(j["energy_j"], world_, update_stats_.count());
   if (has_lifetime_outputs(def_.world)) j["lifetime"] = lifetime_.summary(world_);
   if (has_twin_) j["recovery"] = recovery_summary(def_.world.faults, samples_);
 
   // Protocol statistics over all updates.
   nlohmann::json p;
   p["name"] = def_.world.protocol.kind;
-  const double n_updates = static_cast<double>(updates_.size());
-  double rounds = 0, latency = 0, latency_max = 0, radius = 0;
-  std::uint32_t rounds_max = 0;
-  std::uint64_t truncated = 0, delayed = 0, no_mass = 0;
-  const std::size_t types = net::message_type_count();
-  std::vector<double> per_type(types, 0.0);
-  double update_bytes = 0;
-  protocols::GeometryWork work;
-  for (const UpdateRow& u : updates_) {
-    const auto& r = u.record;
-    work += r.geometry;
-    rounds += r.rounds;
-    rounds_max = std::max(rounds_max, r.rounds);
-    const double l = sim::to_seconds(r.finished - r.started);
-    latency += l;
-    latency_max = std::max(latency_max, l);
-    radius += r.radius;
-    truncated += r.truncated ? 1 : 0;
-    delayed += r.delayed ? 1 : 0;
-    no_mass += r.no_mass ? 1 : 0;
-    for (std::size_t t = 0; t < types; ++t) {
-      per_type[t] += static_cast<double>(r.messages[t].count);
-      update_bytes += static_cast<double>(r.messages[t].bytes);
-    }
-  }
-  const double div = std::max(1.0, n_updates);
-  p["updates"] = updates_.size();
-  p["rounds_mean"] = rounds / div;
-  p["rounds_max"] = rounds_max;
-  p["truncated"] = truncated;
-  p["cell_correctness"] =
-      updates_.empty() ? 1.0 : static_cast<double>(correct_updates_) / n_updates;
-  p["cell_correctness_heard"] =
-      updates_.empty() ? 1.0 : static_cast<double>(correct_heard_updates_) / n_updates;
-  p["delayed_updates"] = delayed;
-  p["no_mass_updates"] = no_mass;
-  p["latency_mean_s"] = latency / div;
-  p["latency_max_s"] = latency_max;
-  p["radius_mean"] = radius / div;
-  nlohmann::json per_update = nlohmann::json::object();
-  for (std::size_t t = 0; t < types; ++t)
-    if (per_type[t] > 0) per_update[std::string(net::name_of(t))] = per_type[t] / div;
-  p["messages_per_update"] = per_update;
-  p["bytes_per_update"] = update_bytes / div;
-  p["geometry"] = geometry_summary(work, world_.sensor_point_in_cell_tests(), updates_.size());
+  update_stats_.fill_summary(p, world_.sensor_point_in_cell_tests());
   j["protocol"] = p;
 
   if (world_.diffusion() && !samples_.empty()) j["pollution"] = pollution_summary();

@@ -15,6 +15,7 @@
 #include "scenarios/loader/scenario.hpp"
 #include "scenarios/run/lifetime_outputs.hpp"
 #include "scenarios/run/tracking_metrics.hpp"
+#include "scenarios/run/update_statistics.hpp"
 
 namespace masnet::scenarios {
 
@@ -104,9 +105,9 @@ class Recorder final : public agents::WorldObserver {
   const ScenarioDef& def_;
   std::vector<Sample> samples_;
   std::vector<TrajectoryRow> trajectories_;
-  std::vector<UpdateRow> updates_;
+  std::vector<UpdateRow> updates_;  // only when updates.csv is written
+  UpdateStatistics update_stats_;
   nlohmann::json snapshots_ = nlohmann::json::array();
-  std::uint64_t correct_updates_ = 0, correct_heard_updates_ = 0;
   std::optional<TrackingMetrics> tracking_;  // acoustic runs, from the first sample
   bool has_baseline_ = false;
   LifetimeLog lifetime_;

@@ -5,9 +5,11 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -118,4 +120,70 @@ TEST_CASE("on the acoustic scenario range decay costs rounds, and with them clip
         off["geometry"]["clips_per_update"].get<double>());
   CHECK(on["geometry"]["point_tests_per_update"].get<double>() >
         2.0 * off["geometry"]["point_tests_per_update"].get<double>());
+}
+
+namespace {
+
+// Every column of a CSV file of numbers, by name.
+std::map<std::string, std::vector<double>> read_columns(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> header;
+  std::stringstream head(line);
+  for (std::string cell; std::getline(head, cell, ',');)
+    header.push_back(cell);
+  std::map<std::string, std::vector<double>> columns;
+  while (std::getline(in, line)) {
+    std::stringstream row(line);
+    std::size_t c = 0;
+    for (std::string cell; std::getline(row, cell, ','); ++c)
+      columns[header.at(c)].push_back(cell.empty() ? 0.0 : std::stod(cell));
+  }
+  return columns;
+}
+
+}  // namespace
+
+TEST_CASE("summary.json's update statistics do not depend on updates.csv and are its means",
+          "[scenarios]") {
+  // A run without updates.csv keeps running sums instead of every update: the same summary.
+  Run with_rows(acoustic({"output.updates=true"}, 1.0));
+  with_rows.execute();
+  Run without_rows(acoustic({"output.updates=false"}, 1.0));
+  without_rows.execute();
+  const nlohmann::json p = with_rows.summary()["protocol"];
+  CHECK(p.dump() == without_rows.summary()["protocol"].dump());
+  CHECK(with_rows.summary()["energy_j"].dump() == without_rows.summary()["energy_j"].dump());
+
+  const fs::path dir =
+      fs::temp_directory_path() / ("masnet-test-update-statistics-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  with_rows.write_files(dir.string());
+  const auto columns = read_columns(dir / "updates.csv");
+  fs::remove_all(dir);
+  const std::vector<double>& rounds = columns.at("rounds");
+  const double updates = static_cast<double>(rounds.size());
+  REQUIRE(rounds.size() == p["updates"].get<std::size_t>());
+  REQUIRE(updates > 20);
+  const auto mean = [&](const std::string& name) {
+    double sum = 0;
+    for (double v : columns.at(name))
+      sum += v;
+    return sum / updates;
+  };
+  const auto count = [&](const std::string& name) {
+    return static_cast<std::uint64_t>(mean(name) * updates + 0.5);
+  };
+  CHECK(p["rounds_mean"].get<double>() == Approx(mean("rounds")));
+  CHECK(p["radius_mean"].get<double>() == Approx(mean("radius")));
+  CHECK(p["latency_mean_s"].get<double>() == Approx(mean("latency_s")));
+  CHECK(p["latency_max_s"].get<double>() ==
+        Approx(*std::max_element(columns.at("latency_s").begin(), columns.at("latency_s").end())));
+  CHECK(p["rounds_max"].get<double>() == *std::max_element(rounds.begin(), rounds.end()));
+  CHECK(p["truncated"].get<std::uint64_t>() == count("truncated"));
+  CHECK(p["delayed_updates"].get<std::uint64_t>() == count("delayed"));
+  CHECK(p["cell_correctness"].get<double>() == Approx(mean("correct")));
+  CHECK(p["messages_per_update"]["DISCOVER"].get<double>() == Approx(mean("DISCOVER_count")));
 }
