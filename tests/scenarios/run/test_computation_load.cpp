@@ -39,11 +39,8 @@ nlohmann::json geometry_of(const std::vector<std::string>& overrides, double dur
   return run.summary()["protocol"];
 }
 
-// The sums of two columns of a CSV file, and its number of rows.
-struct ColumnSums {
-  std::uint64_t rows = 0, clips = 0, tests = 0;
-};
-ColumnSums sum_columns(const fs::path& path) {
+// Every column of a CSV file of numbers, by name.
+std::map<std::string, std::vector<double>> read_columns(const fs::path& path) {
   std::ifstream in(path);
   std::string line;
   std::getline(in, line);
@@ -51,23 +48,30 @@ ColumnSums sum_columns(const fs::path& path) {
   std::stringstream head(line);
   for (std::string cell; std::getline(head, cell, ',');)
     header.push_back(cell);
-  std::size_t clips = header.size(), tests = header.size();
-  for (std::size_t c = 0; c < header.size(); ++c) {
-    if (header[c] == "half_plane_clips") clips = c;
-    if (header[c] == "point_in_cell_tests") tests = c;
-  }
-  REQUIRE(clips < header.size());
-  REQUIRE(tests < header.size());
-  ColumnSums sums;
+  std::map<std::string, std::vector<double>> columns;
   while (std::getline(in, line)) {
-    std::vector<std::string> cells;
     std::stringstream row(line);
-    for (std::string cell; std::getline(row, cell, ',');)
-      cells.push_back(cell);
-    ++sums.rows;
-    sums.clips += std::stoull(cells.at(clips));
-    sums.tests += std::stoull(cells.at(tests));
+    std::size_t c = 0;
+    for (std::string cell; std::getline(row, cell, ','); ++c)
+      columns[header.at(c)].push_back(cell.empty() ? 0.0 : std::stod(cell));
   }
+  return columns;
+}
+
+// The sums of two columns of a CSV file, and its number of rows.
+struct ColumnSums {
+  std::uint64_t rows = 0, clips = 0, tests = 0;
+};
+ColumnSums sum_columns(const fs::path& path) {
+  const auto columns = read_columns(path);
+  REQUIRE(columns.count("half_plane_clips") == 1);
+  REQUIRE(columns.count("point_in_cell_tests") == 1);
+  ColumnSums sums;
+  sums.rows = columns.at("half_plane_clips").size();
+  for (double clips : columns.at("half_plane_clips"))
+    sums.clips += static_cast<std::uint64_t>(clips);
+  for (double tests : columns.at("point_in_cell_tests"))
+    sums.tests += static_cast<std::uint64_t>(tests);
   return sums;
 }
 
@@ -121,29 +125,6 @@ TEST_CASE("on the acoustic scenario range decay costs rounds, and with them clip
   CHECK(on["geometry"]["point_tests_per_update"].get<double>() >
         2.0 * off["geometry"]["point_tests_per_update"].get<double>());
 }
-
-namespace {
-
-// Every column of a CSV file of numbers, by name.
-std::map<std::string, std::vector<double>> read_columns(const fs::path& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> header;
-  std::stringstream head(line);
-  for (std::string cell; std::getline(head, cell, ',');)
-    header.push_back(cell);
-  std::map<std::string, std::vector<double>> columns;
-  while (std::getline(in, line)) {
-    std::stringstream row(line);
-    std::size_t c = 0;
-    for (std::string cell; std::getline(row, cell, ','); ++c)
-      columns[header.at(c)].push_back(cell.empty() ? 0.0 : std::stod(cell));
-  }
-  return columns;
-}
-
-}  // namespace
 
 TEST_CASE("summary.json's update statistics do not depend on updates.csv and are its means",
           "[scenarios]") {
