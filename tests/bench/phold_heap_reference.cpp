@@ -1,16 +1,14 @@
-// The reference design for masnet's kernel: PHOLD (tests/bench/phold.cpp, identical workload,
-// random stream and tie-break, so the same checksum) on a plain 4-ary min-heap of 16-byte POD
-// records {time, sequence, LP}, the work done by a direct call. No fingerprint, no cancellation,
-// no type-erased actions: the floor a general kernel is measured against (docs/performance.md).
+// The reference design for masnet's kernel: PHOLD (phold_workload.hpp: the workload, random
+// stream and tie-break of tests/bench/phold.cpp, so the same checksum) on a plain 4-ary min-heap of
+// 16-byte POD records {time, sequence, LP}, the work done by a direct call. No fingerprint, no
+// cancellation, no type-erased actions: the floor a general kernel is measured against
+// (docs/performance.md).
 //   masnet_bench_phold_heap_reference --lps=100 --m=10 --events=1e7 [--warmup=N]
-#include <cmath>
-#include <cstdio>
+#include <cstdint>
 #include <memory>
 #include <new>
-#include <vector>
 
-#include "bench_args.hpp"
-#include "sim/random.hpp"
+#include "phold_workload.hpp"
 
 using namespace masnet;
 
@@ -92,37 +90,22 @@ class FourAryHeap {
 
 struct Phold {
   FourAryHeap heap;
-  sim::RandomStream rng{42};
-  std::uint32_t lps = 0;
+  bench::PholdWorkload work;
   std::uint32_t next_sequence = 0;
   std::int64_t now = 0;
   bool stopped = false;
-  std::vector<std::uint64_t> per_lp;
-  std::uint64_t processed = 0, warmup = 0, measured = 0;
-  double t0 = 0, t1 = 0;
 
-  std::int64_t delay_ticks() {
-    const auto d =
-        static_cast<std::int64_t>(-std::log(bench::unit_open_closed(rng.next_u64())) * 1e9);
-    return d < 1 ? 1 : d;
-  }
-  std::uint32_t random_lp() {
-    return static_cast<std::uint32_t>((static_cast<unsigned __int128>(rng.next_u64()) * lps) >> 64);
-  }
+  explicit Phold(const bench::Args& args) : work(args) {}
   void schedule(std::int64_t delay, std::uint32_t lp) {
     heap.push(Record{now + delay, lp, next_sequence++});
   }
   void handle(std::uint32_t lp) {
-    ++per_lp[lp];
-    ++processed;
-    if (processed == warmup) t0 = bench::wall_seconds();
-    if (processed == warmup + measured) {
-      t1 = bench::wall_seconds();
+    if (work.count(lp)) {
       stopped = true;
       return;
     }
-    const std::uint32_t dst = random_lp();
-    schedule(delay_ticks(), dst);
+    const std::uint32_t dst = work.random_lp();
+    schedule(work.delay_ticks(), dst);
   }
   void run() {
     while (!heap.empty() && !stopped) {
@@ -136,29 +119,12 @@ struct Phold {
 }  // namespace
 
 int main(int argc, char** argv) {
-  bench::Args args{argc, argv};
-  Phold p;
-  p.lps = static_cast<std::uint32_t>(args.number("lps", 100));
-  const auto per_lp = static_cast<std::uint32_t>(args.number("m", 10));
-  p.measured = static_cast<std::uint64_t>(args.number("events", 1e7));
-  const std::uint64_t population = std::uint64_t{p.lps} * per_lp;
-  p.warmup = static_cast<std::uint64_t>(
-      args.number("warmup", static_cast<double>(population < 200000 ? 200000 : population)));
-  p.per_lp.assign(p.lps, 0);
-  p.heap.reserve(population + 16);
-  for (std::uint32_t lp = 0; lp < p.lps; ++lp)
-    for (std::uint32_t j = 0; j < per_lp; ++j)
-      p.schedule(p.delay_ticks(), lp);
+  Phold p{bench::Args{argc, argv}};
+  p.heap.reserve(p.work.population() + 16);
+  for (std::uint32_t lp = 0; lp < p.work.lps; ++lp)
+    for (std::uint32_t j = 0; j < p.work.initial_per_lp; ++j)
+      p.schedule(p.work.delay_ticks(), lp);
   p.run();
-  std::uint64_t checksum = bench::kFnvBasis;
-  for (std::uint64_t c : p.per_lp)
-    checksum = bench::fnv_word(checksum, c);
-  const double sec = p.t1 - p.t0;
-  std::printf(
-      "RESULT name=phold/heap4-reference/pop=%llu metric=%.0f unit=events/s ns_per_event=%.1f "
-      "sec=%.3f events=%llu lps=%u m=%u checksum=%016llx\n",
-      static_cast<unsigned long long>(population), static_cast<double>(p.measured) / sec,
-      sec * 1e9 / static_cast<double>(p.measured), sec, static_cast<unsigned long long>(p.measured),
-      p.lps, per_lp, static_cast<unsigned long long>(checksum));
+  p.work.print_result("heap4-reference");
   return 0;
 }
