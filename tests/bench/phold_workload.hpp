@@ -61,10 +61,9 @@ struct PholdWorkload {
     std::printf(
         "RESULT name=phold/%s/pop=%llu metric=%.0f unit=events/s ns_per_event=%.1f sec=%.3f "
         "events=%llu lps=%u m=%u checksum=%016llx\n",
-        kernel, static_cast<unsigned long long>(population()),
-        static_cast<double>(measured) / sec, sec * 1e9 / static_cast<double>(measured), sec,
-        static_cast<unsigned long long>(measured), lps, initial_per_lp,
-        static_cast<unsigned long long>(checksum));
+        kernel, static_cast<unsigned long long>(population()), static_cast<double>(measured) / sec,
+        sec * 1e9 / static_cast<double>(measured), sec, static_cast<unsigned long long>(measured),
+        lps, initial_per_lp, static_cast<unsigned long long>(checksum));
   }
 };
 
