@@ -38,6 +38,8 @@ void LiveWatch::reanchor_locked(double t_s) {
 void LiveWatch::on_start(const nlohmann::json& header) {
   std::lock_guard lock(mutex_);
   hello_ = nlohmann::json{{"type", "hello"}, {"header", header}}.dump();
+  // A viewer may have come while the world was being built: its greeting had no hello.
+  if (greeted_without_hello_) server_.publish_control(hello_);
 }
 
 void LiveWatch::remember(const nlohmann::json& frame) {
@@ -163,7 +165,10 @@ double LiveWatch::held_s() const {
 std::vector<std::string> LiveWatch::greeting() {
   std::lock_guard lock(mutex_);
   std::vector<std::string> messages;
-  if (!hello_.empty()) messages.push_back(hello_);
+  if (hello_.empty())
+    greeted_without_hello_ = true;
+  else
+    messages.push_back(hello_);
   nlohmann::json history = {{"type", "history"}, {"points", nlohmann::json::array()}};
   for (const nlohmann::json& point : history_)
     history["points"].push_back(point);

@@ -70,6 +70,7 @@ class LiveWatch final : public scenarios::RunWatcher {
   Clock::time_point anchor_wall_;
   std::size_t viewers_ = 0;
   std::string hello_;
+  bool greeted_without_hello_ = false;  // a viewer came before the run started
   std::string latest_frame_;
   std::deque<nlohmann::json> history_;  // {t, p, metrics} of frames, thinned when full
   std::size_t history_stride_ = 1, frames_seen_ = 0;

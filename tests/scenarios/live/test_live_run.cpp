@@ -224,6 +224,24 @@ TEST_CASE("live run: a viewer pauses, steps one update and runs the rest to the 
   CHECK(viewer.read_type("error")["message"] == "the run has finished");
 }
 
+TEST_CASE("live run: a viewer that comes before the run starts still gets the run's hello") {
+  // `masnet run --serve` listens before it builds the world: a page opened at once is greeted
+  // without a hello, which must follow when the run starts.
+  ServedRun served(false, 0.0);
+  auto& [server, watch] = served;
+  RawViewer viewer(server.port());
+  CHECK(viewer.read_type("status")["t"] == 0.0);  // the greeting ends with a status
+  Run run(acoustic(0.5));
+  std::thread run_thread([&] { run.execute({}, &watch); });
+  nlohmann::json message;
+  do {
+    message = viewer.read();
+  } while (message["type"] != "hello" && message["type"] != "end");
+  run_thread.join();
+  REQUIRE(message["type"] == "hello");
+  CHECK(message["header"]["robots"] == 9);
+}
+
 TEST_CASE("live run: a late viewer gets the whole history of the finished run") {
   ServedRun served(true, 0.0);
   auto& [server, watch] = served;
