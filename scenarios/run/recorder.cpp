@@ -14,7 +14,6 @@
 #include "scenarios/run/contention_outputs.hpp"
 #include "scenarios/run/curve_summary.hpp"
 #include "scenarios/run/energy_outputs.hpp"
-#include "scenarios/run/geometry_outputs.hpp"
 
 namespace masnet::scenarios {
 namespace {
