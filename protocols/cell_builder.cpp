@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <numbers>
 
@@ -31,6 +32,14 @@ const std::array<Vec2, kDiskSides>& disk_normals() {
     return u;
   }();
   return normals;
+}
+
+// Crossing of edge i → j (one side strictly in, the other strictly out), interpolated from
+// the inside vertex so both orders of the same edge give the same point.
+Vec2 crossing(const Vec2* pts, const double* side, std::size_t i, std::size_t j) {
+  const std::size_t in = side[i] < 0.0 ? i : j, out = in == i ? j : i;
+  const double t = side[in] / (side[in] - side[out]);
+  return pts[in] + t * (pts[out] - pts[in]);
 }
 
 }  // namespace
@@ -74,8 +83,69 @@ void canonicalize(std::vector<Vec2>& pts, std::vector<std::uint32_t>& labels, do
   labels.resize(n);
 }
 
-void LabelledClipper::cut(std::uint32_t label, double tol, double scale) {
+std::size_t LabelledClipper::cut_one_run(std::uint32_t label, std::uint64_t out_mask,
+                                         std::uint64_t in_mask, std::array<std::size_t, 3>& seams) {
   const std::size_t n = n_;
+  const Vec2* pts = pts_.data();
+  const std::uint32_t* labels = labels_.data();
+  Vec2* out_pts = next_pts_.data();
+  std::uint32_t* out_labels = next_labels_.data();
+  // The run out is first_out..last_out (cyclically); the vertex before it leaves, the one
+  // after it enters. The general pass starts at vertex 0, so where it lies sets the order.
+  auto copy_in = [&](std::size_t first, std::size_t last, std::size_t to) {
+    std::copy(pts + first, pts + last + 1, out_pts + to);
+    std::copy(labels + first, labels + last + 1, out_labels + to);
+  };
+  if (in_mask & 1u) {  // vertices 0..first_out−1, X1, X2, last_out+1..n−1
+    const auto first_out = static_cast<std::size_t>(std::countr_zero(out_mask));
+    const auto last_out = static_cast<std::size_t>(63 - std::countl_zero(out_mask));
+    copy_in(0, first_out - 1, 0);
+    std::size_t m = first_out;
+    out_pts[m] = crossing(pts, side_.data(), first_out - 1, first_out);
+    out_labels[m++] = label;
+    out_pts[m] = crossing(pts, side_.data(), last_out, last_out + 1 == n ? 0 : last_out + 1);
+    out_labels[m++] = labels[last_out];
+    if (last_out + 1 < n) {
+      copy_in(last_out + 1, n - 1, m);
+      m += n - 1 - last_out;
+    }
+    seams = {first_out - 1, first_out, first_out + 1};
+    return m;
+  }
+  // Vertex 0 out: X2, vertices last_out+1..first_out−1 (the run in), X1.
+  const auto first_in = static_cast<std::size_t>(std::countr_zero(in_mask));
+  const auto last_in = static_cast<std::size_t>(63 - std::countl_zero(in_mask));
+  out_pts[0] = crossing(pts, side_.data(), first_in - 1, first_in);
+  out_labels[0] = labels[first_in - 1];
+  copy_in(first_in, last_in, 1);
+  const std::size_t count_in = last_in - first_in + 1;
+  out_pts[count_in + 1] = crossing(pts, side_.data(), last_in, last_in + 1 == n ? 0 : last_in + 1);
+  out_labels[count_in + 1] = label;
+  seams = {0, count_in, count_in + 1};
+  return count_in + 2;
+}
+
+void LabelledClipper::cut(std::uint32_t label, double tol, double scale, std::uint64_t out_mask,
+                          std::uint64_t in_mask) {
+  const double tol_len = kGeometryRelTol * scale;
+  const std::size_t n = n_;
+  if (n <= 64) {
+    const std::uint64_t all = n == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n) - 1;
+    // One run out: exactly two places where out and in alternate around the polygon.
+    const std::uint64_t shifted = ((out_mask >> 1) | (out_mask << (n - 1))) & all;
+    if ((out_mask | in_mask) == all && std::popcount(out_mask ^ shifted) == 2) {
+      std::array<std::size_t, 3> seams;
+      const std::size_t m = cut_one_run(label, out_mask, in_mask, seams);
+      const bool canonical = canonical_tol_ == tol_len && m >= 3 && seams_pass(m, seams, tol_len);
+      pts_.swap(next_pts_);
+      labels_.swap(next_labels_);
+      n_ = m;
+      if (!canonical) canonicalize(pts_.data(), labels_.data(), n_, tol_len);
+      reserve(n_);
+      canonical_tol_ = tol_len;
+      return;
+    }
+  }
   const Vec2* pts = pts_.data();
   const std::uint32_t* labels = labels_.data();
   const double* side = side_.data();
@@ -102,13 +172,7 @@ void LabelledClipper::cut(std::uint32_t label, double tol, double scale) {
     out_labels[m] = l;
     ++m;
   };
-  // Crossing of edge i → j (one side strictly in, the other strictly out), interpolated from
-  // the inside vertex so both orders of the same edge give the same point.
-  auto intersection = [&](std::size_t i, std::size_t j) -> Vec2 {
-    const std::size_t in = side[i] < 0.0 ? i : j, out = in == i ? j : i;
-    const double t = side[in] / (side[in] - side[out]);
-    return pts[in] + t * (pts[out] - pts[in]);
-  };
+  auto intersection = [&](std::size_t i, std::size_t j) { return crossing(pts, side, i, j); };
   std::size_t first_origin = kNewVertex;
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t j = i + 1 == n ? 0 : i + 1;
@@ -135,7 +199,6 @@ void LabelledClipper::cut(std::uint32_t label, double tol, double scale) {
       too_many_seams = true;
     }
   }
-  const double tol_len = kGeometryRelTol * scale;
   // canonicalize() changes nothing when every turn passes; those between vertices that were
   // consecutive before already passed with this tolerance, so only the seams are tested.
   const bool canonical =
@@ -155,11 +218,15 @@ bool LabelledClipper::seams_pass(std::size_t m, std::span<const std::size_t> sea
   const Vec2* pts = next_pts_.data();
   auto next = [m](std::size_t k) { return k + 1 == m ? 0 : k + 1; };
   auto prev = [m](std::size_t k) { return k == 0 ? m - 1 : k - 1; };
+  // Seams come in increasing order and a cut's are usually consecutive: the turn at a seam's
+  // end is then the next seam's first, tested once.
+  std::size_t turn_tested = m;
   for (std::size_t a : seams) {
     const std::size_t b = next(a);
     if ((pts[b] - pts[a]).squaredNorm() <= tol_sq) return false;
-    if (turn(pts[prev(a)], pts[a], pts[b]) <= 0) return false;
+    if (a != turn_tested && turn(pts[prev(a)], pts[a], pts[b]) <= 0) return false;
     if (turn(pts[a], pts[b], pts[next(b)]) <= 0) return false;
+    turn_tested = b;
   }
   return true;
 }

@@ -3,6 +3,7 @@
 // voronoi_cells (voronoi_cells.cpp); internal to the protocols library, not part of its API.
 // Tolerances and degenerate cases: docs/geometry.md.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -73,19 +74,21 @@ class LabelledClipper {
     const double tol = kGeometryRelTol * ((std::abs(nx) + std::abs(ny)) * scale + std::abs(offset));
     const Vec2* pts = pts_.data();
     double* side = side_.data();
-    bool any_out = false, any_in = false;
+    // Bit i set: vertex i strictly out (out_mask), strictly in (in_mask); only the low 64
+    // vertices are marked, which cut() checks.
+    std::uint64_t out_mask = 0, in_mask = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const double s = nx * pts[i].x() + ny * pts[i].y() - offset;
       side[i] = s;
-      any_out |= s > tol;
-      any_in |= s < -tol;
+      out_mask |= std::uint64_t{s > tol} << (i & 63);
+      in_mask |= std::uint64_t{s < -tol} << (i & 63);
     }
-    if (!any_out) return false;
-    if (!any_in) {  // at most a tol-thin sliver would remain
+    if (out_mask == 0) return false;
+    if (in_mask == 0) {  // at most a tol-thin sliver would remain
       clear();
       return true;
     }
-    cut(label, tol, scale);
+    cut(label, tol, scale, out_mask, in_mask);
     return true;
   }
 
@@ -93,7 +96,13 @@ class LabelledClipper {
   static constexpr std::uint32_t kNewVertex = 0xFFFFFFFFu;
   // The Sutherland–Hodgman pass of clip() once side_ holds every vertex's signed distance and
   // some vertex is strictly in, some strictly out.
-  void cut(std::uint32_t label, double tol, double scale);
+  void cut(std::uint32_t label, double tol, double scale, std::uint64_t out_mask,
+           std::uint64_t in_mask);
+  // cut() for the usual case: no vertex on the line, one run of vertices out. Returns the
+  // output vertex count, written to next_pts_ and next_labels_ exactly as the general pass
+  // would, with its three seams.
+  std::size_t cut_one_run(std::uint32_t label, std::uint64_t out_mask, std::uint64_t in_mask,
+                          std::array<std::size_t, 3>& seams);
   // Room for `count` vertices in every buffer (the clip output gets twice that).
   void reserve(std::size_t count) {
     if (pts_.size() >= 2 * count) return;

@@ -88,6 +88,9 @@ std::vector<Cell> voronoi_cells(std::span<const Vec2> sites, const ConvexPolygon
   const bool sites_may_coincide = any_coincident(item_sites, start);
 
   CellBuilder builder;
+  // One ring's candidate positions, with room for gather()'s fixed-width writes.
+  constexpr std::uint32_t kGatherWidth = 4;
+  std::vector<std::uint32_t> ring(n + kGatherWidth);
   // Cells in bucket order: consecutive cells share most candidates, which stay in cache.
   for (std::size_t item = 0; item < n; ++item) {
     const std::size_t i = items[item];
@@ -112,51 +115,77 @@ std::vector<Cell> voronoi_cells(std::span<const Vec2> sites, const ConvexPolygon
       const double y0 = lo.y() + row * bucket - box_slack, y1 = y0 + bucket + 2.0 * box_slack;
       return std::max({0.0, y0 - p.y(), p.y() - y1});
     };
-    // Applies the sites of bucket (col, row), inside the grid; false once the cell is empty.
-    auto visit = [&](int col, int row, bool test_box) {
-      const std::size_t b = static_cast<std::size_t>(row * nx + col);
-      const std::uint32_t first = start[b], last = start[b + 1];
-      if (first == last) return true;
-      if (test_box) {
-        const double gx = gap_x(col), gy = gap_y(row);
-        if (beyond(gx * gx + gy * gy)) return true;
+    // A ring's candidates are gathered (their positions in bucket order) before they are
+    // applied: a bucket holds 0, 1, 2… sites at random, and a loop per bucket would take a
+    // mispredicted branch for nearly every bucket. Gathering writes kGatherWidth positions
+    // whatever the bucket holds and counts only its own.
+    std::size_t count = 0;
+    auto gather = [&](std::size_t b, bool skip) __attribute__((always_inline)) {
+      const std::uint32_t first = start[b];
+      const std::uint32_t size = skip ? 0u : start[b + 1] - first;
+      for (std::uint32_t j = 0; j < kGatherWidth; ++j)
+        ring[count + j] = first + j;
+      if (size > kGatherWidth) [[unlikely]] {
+        for (std::uint32_t j = kGatherWidth; j < size; ++j)
+          ring[count + j] = first + j;
       }
-      for (std::uint32_t k = first; k < last; ++k)
+      count += size;
+    };
+    // Applies the gathered candidates in order; false once the cell is empty.
+    auto apply_gathered = [&]() __attribute__((always_inline)) {
+      for (std::size_t g = 0; g < count; ++g) {
+        const std::uint32_t k = ring[g];
         if (!builder.add_candidate(items[k], item_sites[k])) return false;
+      }
       return true;
     };
-    bool alive = visit(bx, by, false);
-    for (int r = 1; alive; ++r) {
+    gather(static_cast<std::size_t>(by * nx + bx), false);
+    for (int r = 1;; ++r) {
       // Sites in ring r are at least (r − 1)·bucket away; the slack absorbs the rounding of
       // bucket assignment.
       const double gap = (r - 1 - 1e-9) * bucket;
       if (r >= 2 && gap * gap > 4.0 * builder.reach_sq()) break;
       // Ring r in a fixed order: bottom and top rows column by column, then the left and
-      // right columns row by row.
+      // right columns row by row. From ring 2 on, buckets whose box, grown by box_slack, lies
+      // beyond are passed over, judged by the farthest vertex when the ring starts (it only
+      // comes nearer, so add_candidate then dismisses what a later judgement would skip); a
+      // box's gap along one axis is computed once for the side or the pair sharing it.
       const bool test_box = boxes_hold_sites && r >= 2;
-      auto side_open = [&](int index, int count, double side_gap) {
-        return index >= 0 && index < count && !(test_box && beyond(side_gap * side_gap));
+      auto side_open = [&](int index, int count_along, double side_gap) {
+        return index >= 0 && index < count_along && !(test_box && beyond(side_gap * side_gap));
+      };
+      auto skipped = [&](double gap_a, double gap_b) {
+        return test_box && beyond(gap_a * gap_a + gap_b * gap_b);
       };
       const int bottom = by - r, top = by + r, left = bx - r, right = bx + r;
-      const bool bottom_open = side_open(bottom, ny, test_box ? gap_y(bottom) : 0.0);
-      const bool top_open = side_open(top, ny, test_box ? gap_y(top) : 0.0);
+      const double bottom_gap = test_box ? gap_y(bottom) : 0.0;
+      const double top_gap = test_box ? gap_y(top) : 0.0;
+      const bool bottom_open = side_open(bottom, ny, bottom_gap);
+      const bool top_open = side_open(top, ny, top_gap);
       if (bottom_open || top_open) {
-        for (int col = std::max(left, 0), end = std::min(right, nx - 1); alive && col <= end;
-             ++col) {
-          if (bottom_open) alive = visit(col, bottom, test_box);
-          if (alive && top_open) alive = visit(col, top, test_box);
+        for (int col = std::max(left, 0), end = std::min(right, nx - 1); col <= end; ++col) {
+          const double gx = test_box ? gap_x(col) : 0.0;
+          if (bottom_open)
+            gather(static_cast<std::size_t>(bottom * nx + col), skipped(gx, bottom_gap));
+          if (top_open) gather(static_cast<std::size_t>(top * nx + col), skipped(gx, top_gap));
         }
       }
-      const bool left_open = side_open(left, nx, test_box ? gap_x(left) : 0.0);
-      const bool right_open = side_open(right, nx, test_box ? gap_x(right) : 0.0);
+      const double left_gap = test_box ? gap_x(left) : 0.0;
+      const double right_gap = test_box ? gap_x(right) : 0.0;
+      const bool left_open = side_open(left, nx, left_gap);
+      const bool right_open = side_open(right, nx, right_gap);
       if (left_open || right_open) {
-        for (int row = std::max(bottom + 1, 0), end = std::min(top - 1, ny - 1);
-             alive && row <= end; ++row) {
-          if (left_open) alive = visit(left, row, test_box);
-          if (alive && right_open) alive = visit(right, row, test_box);
+        for (int row = std::max(bottom + 1, 0), end = std::min(top - 1, ny - 1); row <= end;
+             ++row) {
+          const double gy = test_box ? gap_y(row) : 0.0;
+          if (left_open) gather(static_cast<std::size_t>(row * nx + left), skipped(left_gap, gy));
+          if (right_open)
+            gather(static_cast<std::size_t>(row * nx + right), skipped(right_gap, gy));
         }
       }
-      if (left <= 0 && bottom <= 0 && right >= nx - 1 && top >= ny - 1) break;
+      const bool alive = apply_gathered();
+      count = 0;
+      if (!alive || (left <= 0 && bottom <= 0 && right >= nx - 1 && top >= ny - 1)) break;
     }
     cells[i] = builder.finish();
   }
