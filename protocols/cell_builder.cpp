@@ -84,7 +84,7 @@ void canonicalize(std::vector<Vec2>& pts, std::vector<std::uint32_t>& labels, do
 }
 
 std::size_t LabelledClipper::cut_one_run(std::uint32_t label, std::uint64_t out_mask,
-                                         std::uint64_t in_mask, std::array<std::size_t, 3>& seams) {
+                                         std::uint64_t in_mask, std::size_t& first_seam) {
   const std::size_t n = n_;
   const Vec2* pts = pts_.data();
   const std::uint32_t* labels = labels_.data();
@@ -92,9 +92,15 @@ std::size_t LabelledClipper::cut_one_run(std::uint32_t label, std::uint64_t out_
   std::uint32_t* out_labels = next_labels_.data();
   // The run out is first_out..last_out (cyclically); the vertex before it leaves, the one
   // after it enters. The general pass starts at vertex 0, so where it lies sets the order.
+  // Copies vertices first..last four at a time (a copy of random length would mispredict its
+  // end); the buffers' padding (reserve) holds the few extra entries, overwritten or ignored.
   auto copy_in = [&](std::size_t first, std::size_t last, std::size_t to) {
-    std::copy(pts + first, pts + last + 1, out_pts + to);
-    std::copy(labels + first, labels + last + 1, out_labels + to);
+    for (std::size_t k = 0; k <= last - first; k += 4) {
+      for (std::size_t j = 0; j < 4; ++j) {
+        out_pts[to + k + j] = pts[first + k + j];
+        out_labels[to + k + j] = labels[first + k + j];
+      }
+    }
   };
   if (in_mask & 1u) {  // vertices 0..first_out−1, X1, X2, last_out+1..n−1
     const auto first_out = static_cast<std::size_t>(std::countr_zero(out_mask));
@@ -109,7 +115,7 @@ std::size_t LabelledClipper::cut_one_run(std::uint32_t label, std::uint64_t out_
       copy_in(last_out + 1, n - 1, m);
       m += n - 1 - last_out;
     }
-    seams = {first_out - 1, first_out, first_out + 1};
+    first_seam = first_out - 1;
     return m;
   }
   // Vertex 0 out: X2, vertices last_out+1..first_out−1 (the run in), X1.
@@ -121,7 +127,7 @@ std::size_t LabelledClipper::cut_one_run(std::uint32_t label, std::uint64_t out_
   const std::size_t count_in = last_in - first_in + 1;
   out_pts[count_in + 1] = crossing(pts, side_.data(), last_in, last_in + 1 == n ? 0 : last_in + 1);
   out_labels[count_in + 1] = label;
-  seams = {0, count_in, count_in + 1};
+  first_seam = count_in;  // seams count_in, count_in + 1 and 0: the last edges and the first
   return count_in + 2;
 }
 
@@ -129,14 +135,19 @@ void LabelledClipper::cut(std::uint32_t label, double tol, double scale, std::ui
                           std::uint64_t in_mask) {
   const double tol_len = kGeometryRelTol * scale;
   const std::size_t n = n_;
-  if (n <= 64) {
+  if (n >= 3 && n <= 64) {
     const std::uint64_t all = n == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n) - 1;
     // One run out: exactly two places where out and in alternate around the polygon.
     const std::uint64_t shifted = ((out_mask >> 1) | (out_mask << (n - 1))) & all;
-    if ((out_mask | in_mask) == all && std::popcount(out_mask ^ shifted) == 2) {
-      std::array<std::size_t, 3> seams;
-      const std::size_t m = cut_one_run(label, out_mask, in_mask, seams);
-      const bool canonical = canonical_tol_ == tol_len && m >= 3 && seams_pass(m, seams, tol_len);
+    const std::uint64_t changes = out_mask ^ shifted;
+    const std::uint64_t after_lowest = changes & (changes - 1);
+    // (Two bits set, tested without std::popcount: this target has no instruction for it.)
+    if ((out_mask | in_mask) == all && after_lowest != 0 &&
+        (after_lowest & (after_lowest - 1)) == 0) {
+      std::size_t first_seam = 0;
+      const std::size_t m = cut_one_run(label, out_mask, in_mask, first_seam);
+      const bool canonical =
+          canonical_tol_ == tol_len && m >= 3 && run_seams_pass(m, first_seam, tol_len);
       pts_.swap(next_pts_);
       labels_.swap(next_labels_);
       n_ = m;
@@ -231,6 +242,24 @@ bool LabelledClipper::seams_pass(std::size_t m, std::span<const std::size_t> sea
   return true;
 }
 
+bool LabelledClipper::run_seams_pass(std::size_t m, std::size_t a, double tol_len) const {
+  const double tol_sq = tol_len * tol_len;
+  const Vec2* pts = next_pts_.data();
+  // Vertices a − 1 … a + 4 around the polygon.
+  std::array<std::size_t, 6> v;
+  std::size_t k = a == 0 ? m - 1 : a - 1;
+  for (std::size_t& index : v) {
+    index = k;
+    k = k + 1 == m ? 0 : k + 1;
+  }
+  bool pass = true;
+  for (std::size_t e = 1; e <= 3; ++e)  // the seams' lengths: edges a → a+1 … a+2 → a+3
+    pass &= (pts[v[e + 1]] - pts[v[e]]).squaredNorm() > tol_sq;
+  for (std::size_t t = 1; t <= 4; ++t)  // the turns at a … a+3
+    pass &= turn(pts[v[t - 1]], pts[v[t]], pts[v[t + 1]]) > 0;
+  return pass;
+}
+
 void CellBuilder::add_disk(double radius) {
   if (clipper_.empty() || !(radius < kNoDisk) || reach_sq_ <= radius * radius) return;
   for (const Vec2& u : disk_normals()) {
@@ -253,8 +282,8 @@ Cell CellBuilder::finish() const {
       cell.neighbours.push_back(label);
     }
   }
-  // Insertion sort: a cell has a handful of neighbours.
   std::vector<std::uint32_t>& nb = cell.neighbours;
+  // Insertion sort past that (sorted input passes straight through).
   for (std::size_t i = 1; i < nb.size(); ++i) {
     const std::uint32_t v = nb[i];
     std::size_t k = i;

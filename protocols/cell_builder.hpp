@@ -9,6 +9,10 @@
 #include <span>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>  // baseline x86-64
+#endif
+
 #include "protocols/geometry.hpp"
 #include "protocols/geometry_internal.hpp"
 
@@ -57,9 +61,12 @@ class LabelledClipper {
   }
 
   double max_distance_sq(const Vec2& p) const {
+    // Four vertices at a time, the padding entries counted as 0 (see clip()).
     double d2 = 0.0;
-    for (std::size_t i = 0; i < n_; ++i)
-      d2 = std::max(d2, (pts_[i] - p).squaredNorm());
+    for (std::size_t i = 0; i < n_; i += 4) {
+      for (std::size_t j = i; j < i + 4; ++j)
+        d2 = std::max(d2, j < n_ ? (pts_[j] - p).squaredNorm() : 0.0);
+    }
     return d2;
   }
 
@@ -77,11 +84,42 @@ class LabelledClipper {
     // Bit i set: vertex i strictly out (out_mask), strictly in (in_mask); only the low 64
     // vertices are marked, which cut() checks.
     std::uint64_t out_mask = 0, in_mask = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double s = nx * pts[i].x() + ny * pts[i].y() - offset;
-      side[i] = s;
-      out_mask |= std::uint64_t{s > tol} << (i & 63);
-      in_mask |= std::uint64_t{s < -tol} << (i & 63);
+    if (n <= 60) {
+      // Four vertices at a time: a loop of random length would mispredict its end. The
+      // entries past n are padding (reserve), their bits dropped.
+      for (std::size_t i = 0; i < n; i += 4) {
+#if defined(__SSE2__)
+        // Two vertices per register, each side rounded as the scalar expression below.
+        const __m128d nxs = _mm_set1_pd(nx), nys = _mm_set1_pd(ny), offsets = _mm_set1_pd(offset);
+        const __m128d tols = _mm_set1_pd(tol), minus_tols = _mm_set1_pd(-tol);
+        for (std::size_t j = i; j < i + 4; j += 2) {
+          const __m128d a = _mm_loadu_pd(pts[j].data()), b = _mm_loadu_pd(pts[j + 1].data());
+          const __m128d xs = _mm_unpacklo_pd(a, b), ys = _mm_unpackhi_pd(a, b);
+          const __m128d s =
+              _mm_sub_pd(_mm_add_pd(_mm_mul_pd(nxs, xs), _mm_mul_pd(nys, ys)), offsets);
+          _mm_storeu_pd(side + j, s);
+          out_mask |= std::uint64_t(_mm_movemask_pd(_mm_cmpgt_pd(s, tols))) << j;
+          in_mask |= std::uint64_t(_mm_movemask_pd(_mm_cmplt_pd(s, minus_tols))) << j;
+        }
+#else
+        for (std::size_t j = i; j < i + 4; ++j) {
+          const double s = nx * pts[j].x() + ny * pts[j].y() - offset;
+          side[j] = s;
+          out_mask |= std::uint64_t{s > tol} << j;
+          in_mask |= std::uint64_t{s < -tol} << j;
+        }
+#endif
+      }
+      const std::uint64_t all = (std::uint64_t{1} << n) - 1;
+      out_mask &= all;
+      in_mask &= all;
+    } else {
+      for (std::size_t i = 0; i < n; ++i) {
+        const double s = nx * pts[i].x() + ny * pts[i].y() - offset;
+        side[i] = s;
+        out_mask |= std::uint64_t{s > tol} << (i & 63);
+        in_mask |= std::uint64_t{s < -tol} << (i & 63);
+      }
     }
     if (out_mask == 0) return false;
     if (in_mask == 0) {  // at most a tol-thin sliver would remain
@@ -100,17 +138,20 @@ class LabelledClipper {
            std::uint64_t in_mask);
   // cut() for the usual case: no vertex on the line, one run of vertices out. Returns the
   // output vertex count, written to next_pts_ and next_labels_ exactly as the general pass
-  // would, with its three seams.
+  // would; its three seams are consecutive, from first_seam on.
   std::size_t cut_one_run(std::uint32_t label, std::uint64_t out_mask, std::uint64_t in_mask,
-                          std::array<std::size_t, 3>& seams);
-  // Room for `count` vertices in every buffer (the clip output gets twice that).
+                          std::size_t& first_seam);
+  // Room for `count` vertices in every buffer: the clip output gets twice that, and
+  // kPadding more for the passes that work four vertices at a time.
+  static constexpr std::size_t kPadding = 4;
   void reserve(std::size_t count) {
-    if (pts_.size() >= 2 * count) return;
+    const std::size_t size = 2 * count + kPadding;
+    if (pts_.size() >= size) return;
     for (std::vector<Vec2>* v : {&pts_, &next_pts_})
-      v->resize(2 * count);
+      v->resize(size);
     for (std::vector<std::uint32_t>* v : {&labels_, &next_labels_})
-      v->resize(2 * count);
-    side_.resize(2 * count);
+      v->resize(size);
+    side_.resize(size);
   }
   // Most edges a clip leaves between vertices consecutive before it; the others are seams.
   static constexpr std::size_t kMaxSeams = 8;
@@ -118,6 +159,9 @@ class LabelledClipper {
   // canonical with tol_len before the clip, so only the edges listed in seams (by their first
   // vertex) and the turns at their ends can fail its tests.
   bool seams_pass(std::size_t m, std::span<const std::size_t> seams, double tol_len) const;
+  // seams_pass() for the three consecutive seams of a one-run cut, the first at vertex a,
+  // every test made (no early exit to mispredict).
+  bool run_seams_pass(std::size_t m, std::size_t a, double tol_len) const;
 
   // Buffers sized once to at least twice the vertex count; the polygon is the first n_.
   std::vector<Vec2> pts_, next_pts_;

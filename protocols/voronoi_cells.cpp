@@ -109,11 +109,11 @@ std::vector<Cell> voronoi_cells(std::span<const Vec2> sites, const ConvexPolygon
     auto beyond = [&](double gap_sq) { return gap_sq > 4.0 * builder.reach_sq() * (1.0 + 1e-9); };
     auto gap_x = [&](int col) {
       const double x0 = lo.x() + col * bucket - box_slack, x1 = x0 + bucket + 2.0 * box_slack;
-      return std::max({0.0, x0 - p.x(), p.x() - x1});
+      return std::max(0.0, std::max(x0 - p.x(), p.x() - x1));
     };
     auto gap_y = [&](int row) {
       const double y0 = lo.y() + row * bucket - box_slack, y1 = y0 + bucket + 2.0 * box_slack;
-      return std::max({0.0, y0 - p.y(), p.y() - y1});
+      return std::max(0.0, std::max(y0 - p.y(), p.y() - y1));
     };
     // A ring's candidates are gathered (their positions in bucket order) before they are
     // applied: a bucket holds 0, 1, 2… sites at random, and a loop per bucket would take a
