@@ -148,7 +148,7 @@ class LabelledClipper {
     const std::size_t size = 2 * count + kPadding;
     if (pts_.size() >= size) return;
     for (std::vector<Vec2>* v : {&pts_, &next_pts_})
-      v->resize(size);
+      v->resize(size, Vec2::Zero());  // the padding is read: never indeterminate
     for (std::vector<std::uint32_t>* v : {&labels_, &next_labels_})
       v->resize(size);
     side_.resize(size);
