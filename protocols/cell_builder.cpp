@@ -146,14 +146,8 @@ void LabelledClipper::cut(std::uint32_t label, double tol, double scale, std::ui
         (after_lowest & (after_lowest - 1)) == 0) {
       std::size_t first_seam = 0;
       const std::size_t m = cut_one_run(label, out_mask, in_mask, first_seam);
-      const bool canonical =
-          canonical_tol_ == tol_len && m >= 3 && run_seams_pass(m, first_seam, tol_len);
-      pts_.swap(next_pts_);
-      labels_.swap(next_labels_);
-      n_ = m;
-      if (!canonical) canonicalize(pts_.data(), labels_.data(), n_, tol_len);
-      reserve(n_);
-      canonical_tol_ = tol_len;
+      adopt_cut(m, canonical_tol_ == tol_len && m >= 3 && run_seams_pass(m, first_seam, tol_len),
+                tol_len);
       return;
     }
   }
@@ -212,9 +206,13 @@ void LabelledClipper::cut(std::uint32_t label, double tol, double scale, std::ui
   }
   // canonicalize() changes nothing when every turn passes; those between vertices that were
   // consecutive before already passed with this tolerance, so only the seams are tested.
-  const bool canonical =
-      canonical_tol_ == tol_len && m >= 3 && !too_many_seams &&
-      seams_pass(m, std::span<const std::size_t>(seams.data(), seam_count), tol_len);
+  adopt_cut(m,
+            canonical_tol_ == tol_len && m >= 3 && !too_many_seams &&
+                seams_pass(m, std::span<const std::size_t>(seams.data(), seam_count), tol_len),
+            tol_len);
+}
+
+void LabelledClipper::adopt_cut(std::size_t m, bool canonical, double tol_len) {
   pts_.swap(next_pts_);
   labels_.swap(next_labels_);
   n_ = m;

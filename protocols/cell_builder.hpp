@@ -136,6 +136,8 @@ class LabelledClipper {
   // some vertex is strictly in, some strictly out.
   void cut(std::uint32_t label, double tol, double scale, std::uint64_t out_mask,
            std::uint64_t in_mask);
+  // Makes the m vertices of the next buffers the polygon, canonicalised unless `canonical`.
+  void adopt_cut(std::size_t m, bool canonical, double tol_len);
   // cut() for the usual case: no vertex on the line, one run of vertices out. Returns the
   // output vertex count, written to next_pts_ and next_labels_ exactly as the general pass
   // would; its three seams are consecutive, from first_seam on.
