@@ -81,17 +81,23 @@ class LabelledClipper {
     const double tol = kGeometryRelTol * ((std::abs(nx) + std::abs(ny)) * scale + std::abs(offset));
     const Vec2* pts = pts_.data();
     double* side = side_.data();
-    // Bit i set: vertex i strictly out (out_mask), strictly in (in_mask); only the low 64
-    // vertices are marked, which cut() checks.
+    // Bit i set: vertex i strictly out (out_mask), strictly in (in_mask).
     std::uint64_t out_mask = 0, in_mask = 0;
+    // Vertex j's signed distance and bits (bit j mod 64: past 64 vertices only "any" counts).
+    auto mark = [&](std::size_t j) {
+      const double s = nx * pts[j].x() + ny * pts[j].y() - offset;
+      side[j] = s;
+      out_mask |= std::uint64_t{s > tol} << (j & 63);
+      in_mask |= std::uint64_t{s < -tol} << (j & 63);
+    };
     if (n <= 60) {
       // Four vertices at a time: a loop of random length would mispredict its end. The
       // entries past n are padding (reserve), their bits dropped.
-      for (std::size_t i = 0; i < n; i += 4) {
 #if defined(__SSE2__)
-        // Two vertices per register, each side rounded as the scalar expression below.
-        const __m128d nxs = _mm_set1_pd(nx), nys = _mm_set1_pd(ny), offsets = _mm_set1_pd(offset);
-        const __m128d tols = _mm_set1_pd(tol), minus_tols = _mm_set1_pd(-tol);
+      // Two vertices per register, each side rounded as mark() rounds it.
+      const __m128d nxs = _mm_set1_pd(nx), nys = _mm_set1_pd(ny), offsets = _mm_set1_pd(offset);
+      const __m128d tols = _mm_set1_pd(tol), minus_tols = _mm_set1_pd(-tol);
+      for (std::size_t i = 0; i < n; i += 4) {
         for (std::size_t j = i; j < i + 4; j += 2) {
           const __m128d a = _mm_loadu_pd(pts[j].data()), b = _mm_loadu_pd(pts[j + 1].data());
           const __m128d xs = _mm_unpacklo_pd(a, b), ys = _mm_unpackhi_pd(a, b);
@@ -101,25 +107,18 @@ class LabelledClipper {
           out_mask |= std::uint64_t(_mm_movemask_pd(_mm_cmpgt_pd(s, tols))) << j;
           in_mask |= std::uint64_t(_mm_movemask_pd(_mm_cmplt_pd(s, minus_tols))) << j;
         }
-#else
-        for (std::size_t j = i; j < i + 4; ++j) {
-          const double s = nx * pts[j].x() + ny * pts[j].y() - offset;
-          side[j] = s;
-          out_mask |= std::uint64_t{s > tol} << j;
-          in_mask |= std::uint64_t{s < -tol} << j;
-        }
-#endif
       }
+#else
+      for (std::size_t i = 0; i < n; i += 4)
+        for (std::size_t j = i; j < i + 4; ++j)
+          mark(j);
+#endif
       const std::uint64_t all = (std::uint64_t{1} << n) - 1;
       out_mask &= all;
       in_mask &= all;
     } else {
-      for (std::size_t i = 0; i < n; ++i) {
-        const double s = nx * pts[i].x() + ny * pts[i].y() - offset;
-        side[i] = s;
-        out_mask |= std::uint64_t{s > tol} << (i & 63);
-        in_mask |= std::uint64_t{s < -tol} << (i & 63);
-      }
+      for (std::size_t j = 0; j < n; ++j)
+        mark(j);
     }
     if (out_mask == 0) return false;
     if (in_mask == 0) {  // at most a tol-thin sliver would remain
