@@ -9,18 +9,33 @@ AnalyticField::AnalyticField(const FieldDef& def) : def_(def) {}
 
 std::vector<Vec2> AnalyticField::sources_at(double t_s) const {
   std::vector<Vec2> out;
+  sources_into(t_s, out);
+  return out;
+}
+
+void AnalyticField::sources_into(double t_s, std::vector<Vec2>& out) const {
+  out.clear();
   for (const PathDef& p : def_.targets)
     out.push_back(position_on(p, t_s));
   for (const GaussianBump& b : def_.bumps)
     out.push_back(position_on(b.path, t_s));
   for (const SourceDef& s : def_.sources)
     out.push_back(position_on(s.path, t_s));
-  return out;
+}
+
+bool AnalyticField::time_invariant() const {
+  if (def_.kind != FieldKind::gaussian) return false;
+  // position_on: start + t·0 is start exactly, so a still path's centre is the same at every t.
+  return std::all_of(def_.bumps.begin(), def_.bumps.end(), [](const GaussianBump& bump) {
+    const PathDef& path = bump.path;
+    return path.waypoints.empty() ? path.velocity == Vec2{0, 0}
+                                  : path.waypoints.size() == 1 || path.speed <= 0.0;
+  });
 }
 
 void AnalyticField::move_to(double t_s) {
   if (t_s == cached_t_s_) return;
-  centres_ = sources_at(t_s);
+  sources_into(t_s, centres_);  // in place: a new instant allocates nothing
   cached_t_s_ = t_s;
 }
 

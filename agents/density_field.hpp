@@ -64,6 +64,10 @@ class AnalyticField {
                                            : std::nullopt;
   }
 
+  /// Gaussian bumps that never move: ρ(s) is the same at every time (and reading it counts
+  /// nothing), so a sensor's value may be kept.
+  bool time_invariant() const;
+
   std::uint64_t clamped_readings() const { return clamped_; }
   const FieldDef& def() const { return def_; }
   /// Positions of the moving entities (targets or bump centres) at t.
@@ -73,6 +77,7 @@ class AnalyticField {
   double evaluate(const Vec2& s, double t_s, bool count);
   double point_value(const Vec2& s, bool count);  // after move_to
   void move_to(double t_s);
+  void sources_into(double t_s, std::vector<Vec2>& out) const;
 
   FieldDef def_;
   double cached_t_s_ = -1.0;

@@ -115,6 +115,8 @@ World::World(sim::Simulator& simulator, const WorldDef& def)
   }
   if (!def_.faults.empty()) radio_.enable_failures();
   sensor_read_counts_.assign(def_.sensors.size(), 0);
+  if (field_.time_invariant())
+    still_field_values_.assign(def_.sensors.size(), std::numeric_limits<double>::quiet_NaN());
   if (def_.field.kind == FieldKind::diffusion)
     diffusion_ = std::make_unique<DiffusionField>(def_.field.diffusion);
   spray_rate_.assign(robots_.size(), 0.0);
@@ -247,7 +249,15 @@ double World::spray_rate(std::size_t robot) const {
 
 double World::sensor_reading(std::size_t sensor, const Vec2& position) {
   ++readings_taken_;
-  double value = field_value(position);
+  double value;
+  if (!still_field_values_.empty()) {
+    // A still field: the sensor's value is computed once (an exp per bump) and then read back.
+    double& kept = still_field_values_[sensor];
+    if (std::isnan(kept)) kept = field_value(position);
+    value = kept;
+  } else {
+    value = field_value(position);
+  }
   if (def_.sensor_noise_sigma > 0.0) {
     // Box-Muller from two keyed draws: the n-th reading of a sensor has fixed noise.
     const std::uint64_t n = sensor_read_counts_[sensor]++;

@@ -220,6 +220,7 @@ class World final : public net::RadioListener,
   std::unique_ptr<protocols::SensorProtocol> sensor_protocol_;
   std::vector<std::unique_ptr<RobotAgent>> robots_;
   std::vector<std::uint32_t> sensor_read_counts_;  // keys the noise draws
+  std::vector<double> still_field_values_;         // per sensor, NaN until read; empty unless still
   net::SpatialGrid sensor_grid_;
   net::LineIndex sensor_lines_;  // the oracle's scanline pass over sensor rows
   std::vector<double> row_buffer_;

@@ -319,3 +319,61 @@ TEST_CASE(
     }
   }
 }
+
+TEST_CASE("a still field's readings, kept per sensor, equal the ones computed at every reading",
+          "[agents]") {
+  // A world whose bumps never move keeps each sensor's field value after its first reading.
+  // The same bumps plus a moving one of amplitude 0 (added last: ρ + 0 is ρ exactly) give the
+  // same field, computed afresh at every reading: the two runs must agree bit for bit, noise
+  // included (drawn per reading, never kept).
+  const double noise_sigma = GENERATE(0.0, 0.05);
+  auto run_world = [noise_sigma](bool with_moving_zero_bump) {
+    WorldDef def = layout(11, protocols::StopCriterion::vertices);
+    def.motion.k = 3.0;
+    def.motion.k_v = 1.0;
+    def.sensor_noise_sigma = noise_sigma;
+    def.field.kind = agents::FieldKind::gaussian;
+    def.field.bumps = {
+        agents::GaussianBump{agents::PathDef{Vec2{0.3, 0.6}, Vec2{0, 0}, {}, 0, false}, 0.2, 1},
+        agents::GaussianBump{agents::PathDef{Vec2{0, 0}, Vec2{0, 0}, {Vec2{0.7, 0.3}}, 0.5, false},
+                             0.15, 2}};
+    if (with_moving_zero_bump)
+      def.field.bumps.push_back(agents::GaussianBump{
+          agents::PathDef{Vec2{0.1, 0.1}, Vec2{0.5, 0.2}, {}, 0, false}, 0.1, 0});
+    CHECK(agents::AnalyticField(def.field).time_invariant() == !with_moving_zero_bump);
+    sim::Simulator simulator;
+    World world(simulator, def);
+    struct Centroids : agents::WorldObserver {
+      std::vector<Vec2> seen;
+      void on_update(std::size_t, const protocols::UpdateRecord& r) override {
+        seen.push_back(r.centroid);
+      }
+    } centroids;
+    world.set_observer(&centroids);
+    world.start();
+    simulator.run_until(sim::time_at(0.3));
+    return std::pair{simulator.fingerprint().value(), centroids.seen};
+  };
+  const auto kept = run_world(false), computed = run_world(true);
+  REQUIRE(kept.second.size() > 20);
+  CHECK(kept.first == computed.first);
+  CHECK(kept.second == computed.second);
+}
+
+TEST_CASE("a field is still only when no bump can move", "[agents]") {
+  agents::FieldDef def;
+  def.kind = agents::FieldKind::gaussian;
+  def.bumps = {
+      agents::GaussianBump{agents::PathDef{Vec2{0.5, 0.5}, Vec2{0, 0}, {}, 0, false}, 0.1, 1}};
+  CHECK(agents::AnalyticField(def).time_invariant());
+  def.bumps[0].path.waypoints = {Vec2{0.2, 0.2}, Vec2{0.8, 0.8}};  // a path, but no speed
+  CHECK(agents::AnalyticField(def).time_invariant());
+  def.bumps[0].path.speed = 0.1;
+  CHECK_FALSE(agents::AnalyticField(def).time_invariant());
+  def.bumps[0].path = agents::PathDef{Vec2{0.5, 0.5}, Vec2{0, 1e-9}, {}, 0, false};
+  CHECK_FALSE(agents::AnalyticField(def).time_invariant());
+  def.kind = agents::FieldKind::acoustic;  // readings count clamps: never kept
+  def.bumps.clear();
+  def.targets = {agents::PathDef{Vec2{0.5, 0.5}, Vec2{0, 0}, {}, 0, false}};
+  CHECK_FALSE(agents::AnalyticField(def).time_invariant());
+}
