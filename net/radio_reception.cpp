@@ -204,12 +204,15 @@ Radio::Heard Radio::hear(const Outgoing& out) {
     }
     const std::uint64_t heard_booking = bytes + (is_broadcast ? 0 : kOneOverheard);
     // A bulk broadcast prefetches the difference-array entries it will update (its receptions
-    // by type); a unicast's job does its own.
-    auto prefetch_both = [count_diff, bytes_diff](std::uint32_t a, std::uint32_t c) {
+    // by type) and, when it gathers receivers, the ids of each run (on large networks each run
+    // is a cache miss); a unicast's job does its own.
+    auto prefetch_both = [count_diff, bytes_diff, slots, collect](std::uint32_t a,
+                                                                  std::uint32_t c) {
       for (std::uint64_t* diff : {count_diff, bytes_diff}) {
         __builtin_prefetch(diff + a, 1);
         __builtin_prefetch(diff + c, 1);
       }
+      if (collect) __builtin_prefetch(slots + a);
     };
     if (bulk && !is_broadcast) {
       // Unicasts, the bulk of the traffic: one job each (see OverhearingJob).
