@@ -40,11 +40,25 @@ double nearest_rank(const std::vector<double>& sorted, double p) {
 
 nlohmann::json distribution_summary(std::vector<double> values) {
   if (values.empty()) return nullptr;
-  std::sort(values.begin(), values.end());
-  return {{"min", values.front()},
-          {"p50", nearest_rank(values, 0.5)},
-          {"p90", nearest_rank(values, 0.9)},
-          {"max", values.back()}};
+  // Two selections instead of a sort (a million sensors: a tenth of a second at the end of the
+  // run): the elements of ranks ⌈0.9·n⌉ and then ⌈0.5·n⌉ among those below it, which are the
+  // values a sorted copy holds there.
+  const std::size_t n = values.size();
+  auto index_of_rank = [n](double p) {
+    const auto rank =
+        static_cast<std::size_t>(std::max(1.0, std::ceil(p * static_cast<double>(n))));
+    return std::min(rank, n) - 1;
+  };
+  const double low = *std::min_element(values.begin(), values.end());
+  const double high = *std::max_element(values.begin(), values.end());
+  const std::size_t i90 = index_of_rank(0.9), i50 = index_of_rank(0.5);
+  const auto at = [&values](std::size_t i) {
+    return values.begin() + static_cast<std::ptrdiff_t>(i);
+  };
+  std::nth_element(values.begin(), at(i90), values.end());
+  const double p90 = values[i90];
+  if (i50 < i90) std::nth_element(values.begin(), at(i50), at(i90));
+  return {{"min", low}, {"p50", values[i50]}, {"p90", p90}, {"max", high}};
 }
 
 void add_energy_details(nlohmann::json& energy, agents::World& world, std::uint64_t updates) {

@@ -18,6 +18,7 @@
 #include "scenarios/run/energy_outputs.hpp"
 #include "scenarios/run/lifetime_outputs.hpp"
 #include "scenarios/run/run.hpp"
+#include "sim/random.hpp"
 
 using namespace masnet;
 using namespace masnet::scenarios;
@@ -315,6 +316,21 @@ TEST_CASE("energy by type and by phase each add up to the radio's transmit and r
   CHECK(nearest_rank({1, 2, 3, 4, 5, 6, 7, 8, 9, 10}, 0.9) == 9);
   CHECK(nearest_rank({7}, 0.9) == 7);
   CHECK(distribution_summary({}).is_null());
+  // The selections give exactly what a sorted copy holds at each rank.
+  sim::RandomStream rng(7);
+  for (std::size_t n : {1u, 2u, 3u, 9u, 10u, 11u, 400u, 1001u}) {
+    std::vector<double> values;
+    for (std::size_t i = 0; i < n; ++i)
+      values.push_back(i % 3 == 0 ? 0.25 : std::floor(rng.uniform(0.0, 50.0)) / 8);  // ties
+    std::vector<double> sorted = values;
+    std::sort(sorted.begin(), sorted.end());
+    const json d = distribution_summary(values);
+    INFO("n = " << n);
+    CHECK(d["min"].get<double>() == sorted.front());
+    CHECK(d["p50"].get<double>() == nearest_rank(sorted, 0.5));
+    CHECK(d["p90"].get<double>() == nearest_rank(sorted, 0.9));
+    CHECK(d["max"].get<double>() == sorted.back());
+  }
 }
 
 TEST_CASE("the same faulty scenario and seed give identical outputs apart from wall time",
