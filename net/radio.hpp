@@ -527,9 +527,8 @@ void Radio::for_each_mobile_within(const Vec2& center, double range, Visit&& vis
   const double radius = range + margin;
   if (skip_b_distance >= 0.0) {
     if (const NearAddressee* near = near_addressee(skip_b, radius + skip_b_distance)) {
-      // The grid's own test on the indexed positions, over the addressee's neighbourhood: all
-      // the tests of up to 64 points first, without a branch (in or out is a coin toss), then the
-      // few inside, in list order.
+      // The grid's own test on the indexed positions, over the addressee's neighbourhood: up to
+      // 64 points at a time (disk_mask), then the few inside, in list order.
       const double cx = center.x(), cy = center.y(), radius2 = radius * radius;
       const double* const xs = near->xs.data();
       const double* const ys = near->ys.data();
@@ -537,23 +536,7 @@ void Radio::for_each_mobile_within(const Vec2& center, double range, Visit&& vis
       const std::size_t count = near->ids.size();
       for (std::size_t base = 0; base < count; base += 64) {
         const std::size_t end = std::min(count, base + 64);
-        std::uint64_t inside = 0;
-        std::size_t k = base;
-#if defined(__SSE2__)
-        // Two points per step, the same arithmetic per point as the scalar loop below.
-        const __m128d vcx = _mm_set1_pd(cx), vcy = _mm_set1_pd(cy), vr2 = _mm_set1_pd(radius2);
-        for (; k + 2 <= end; k += 2) {
-          const __m128d dx = _mm_sub_pd(_mm_loadu_pd(xs + k), vcx);
-          const __m128d dy = _mm_sub_pd(_mm_loadu_pd(ys + k), vcy);
-          const __m128d d2 = _mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy));
-          inside |= static_cast<std::uint64_t>(_mm_movemask_pd(_mm_cmple_pd(d2, vr2)))
-                    << (k - base);
-        }
-#endif
-        for (; k < end; ++k) {
-          const double ddx = xs[k] - cx, ddy = ys[k] - cy;
-          inside |= static_cast<std::uint64_t>(ddx * ddx + ddy * ddy <= radius2) << (k - base);
-        }
+        std::uint64_t inside = disk_mask(xs + base, ys + base, end - base, cx, cy, radius2);
         for (; inside != 0; inside &= inside - 1)
           consider(ids[base + static_cast<std::size_t>(std::countr_zero(inside))]);
       }

@@ -16,6 +16,33 @@
 
 namespace masnet::net {
 
+/// (x − cx)² + (y − cy)²: the one expression every range test here shares.
+inline double squared_distance(double x, double y, double cx, double cy) {
+  const double ddx = x - cx, ddy = y - cy;
+  return ddx * ddx + ddy * ddy;
+}
+
+/// Bit k set iff point k of (xs, ys) lies within r2 (squared) of (cx, cy), for count <= 64
+/// points: every test without a branch (in or out is a coin toss for points near the circle),
+/// two per SSE2 register with the same arithmetic as squared_distance.
+inline std::uint64_t disk_mask(const double* xs, const double* ys, std::size_t count, double cx,
+                               double cy, double r2) {
+  std::uint64_t inside = 0;
+  std::size_t k = 0;
+#if defined(__SSE2__)
+  const __m128d vcx = _mm_set1_pd(cx), vcy = _mm_set1_pd(cy), vr2 = _mm_set1_pd(r2);
+  for (; k + 2 <= count; k += 2) {
+    const __m128d ex = _mm_sub_pd(_mm_loadu_pd(xs + k), vcx);
+    const __m128d ey = _mm_sub_pd(_mm_loadu_pd(ys + k), vcy);
+    const __m128d d2 = _mm_add_pd(_mm_mul_pd(ex, ex), _mm_mul_pd(ey, ey));
+    inside |= static_cast<std::uint64_t>(_mm_movemask_pd(_mm_cmple_pd(d2, vr2))) << k;
+  }
+#endif
+  for (; k < count; ++k)
+    inside |= static_cast<std::uint64_t>(squared_distance(xs[k], ys[k], cx, cy) <= r2) << k;
+  return inside;
+}
+
 class SpatialGrid {
  public:
   /// Indexes `positions[i]` under `ids[i]`. `cell_size` <= 0 picks a size giving about four
@@ -65,25 +92,11 @@ class SpatialGrid {
       const int col_hi = col_of(cx + half);
       const std::uint32_t begin = starts[row * nx_ + col_lo];
       const std::uint32_t end = starts[row * nx_ + col_hi + 1];
-      // All the tests of up to 64 slots first, without a branch (in or out is a coin toss per
-      // point near the circle), then the visits, in slot order, with the same d2.
+      // The tests of up to 64 slots first (disk_mask), then the visits, in slot order, with the
+      // same d2.
       for (std::uint32_t base = begin; base < end; base += 64) {
         const std::uint32_t stop = std::min(end, base + 64);
-        std::uint64_t inside = 0;
-        std::uint32_t k = base;
-#if defined(__SSE2__)
-        const __m128d vcx = _mm_set1_pd(cx), vcy = _mm_set1_pd(cy), vr2 = _mm_set1_pd(r2);
-        for (; k + 2 <= stop; k += 2) {
-          const __m128d ex = _mm_sub_pd(_mm_loadu_pd(xs + k), vcx);
-          const __m128d ey = _mm_sub_pd(_mm_loadu_pd(ys + k), vcy);
-          const __m128d d2 = _mm_add_pd(_mm_mul_pd(ex, ex), _mm_mul_pd(ey, ey));
-          inside |= static_cast<std::uint64_t>(_mm_movemask_pd(_mm_cmple_pd(d2, vr2)))
-                    << (k - base);
-        }
-#endif
-        for (; k < stop; ++k)
-          inside |= static_cast<std::uint64_t>(squared_distance(xs[k], ys[k], cx, cy) <= r2)
-                    << (k - base);
+        std::uint64_t inside = disk_mask(xs + base, ys + base, stop - base, cx, cy, r2);
         for (; inside != 0; inside &= inside - 1) {
           const std::uint32_t slot = base + static_cast<std::uint32_t>(std::countr_zero(inside));
           visit(slot, squared_distance(xs[slot], ys[slot], cx, cy));
@@ -93,12 +106,6 @@ class SpatialGrid {
   }
 
  private:
-  // (x − cx)² + (y − cy)²: the one expression the scalar and the SSE2 tests share.
-  static double squared_distance(double x, double y, double cx, double cy) {
-    const double ddx = x - cx, ddy = y - cy;
-    return ddx * ddx + ddy * ddy;
-  }
-
   // Clamped in double first, so a huge radius cannot overflow the int conversion.
   // A multiply, not a divide: these run twice per grid row of every query.
   int row_of(double y) const {
