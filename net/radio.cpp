@@ -34,13 +34,17 @@ bool Radio::unicast(NodeId source, NodeId destination, Payload payload) {
   return transmit(source, destination, distance, std::move(payload), distance);
 }
 
-const std::vector<Vec2>& Radio::mobile_positions_now() {
+const Radio::MobileCoordinates& Radio::mobile_positions_now() {
   const sim::Time now = simulator_.now();
   if (!mobile_cache_valid_ || mobile_cache_time_ != now ||
-      mobile_cache_.size() != mobile_ids_.size()) {
-    mobile_cache_.resize(mobile_ids_.size());
-    for (std::size_t m = 0; m < mobile_ids_.size(); ++m)
-      mobile_cache_[m] = mobile_->position(mobile_ids_[m]);
+      mobile_cache_.xs.size() != mobile_ids_.size()) {
+    mobile_cache_.xs.resize(mobile_ids_.size());
+    mobile_cache_.ys.resize(mobile_ids_.size());
+    for (std::size_t m = 0; m < mobile_ids_.size(); ++m) {
+      const Vec2 p = mobile_->position(mobile_ids_[m]);
+      mobile_cache_.xs[m] = p.x();
+      mobile_cache_.ys[m] = p.y();
+    }
     mobile_cache_time_ = now;
     mobile_cache_valid_ = true;
   }

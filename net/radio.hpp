@@ -335,7 +335,10 @@ class Radio {
   const NearAddressee* near_addressee(NodeId addressee, double extent);
   /// Positions of the (few) mobile nodes now, asked once per simulated instant: a burst of
   /// replies sent at one instant scans them many times.
-  const std::vector<Vec2>& mobile_positions_now();
+  struct MobileCoordinates {
+    std::vector<double> xs, ys;  // by mobile index
+  };
+  const MobileCoordinates& mobile_positions_now();
   /// Some node has a battery.
   bool battery_limited() const { return any_battery_; }
   /// Some node may be down: sends, receptions and deliveries ask.
@@ -457,7 +460,7 @@ class Radio {
   std::uint64_t mobile_index_generation_ = 0;  // counts rebuilds
   NearAddressee near_;
   double margin_speed_ = 0.0;       // speed bound since the mobile index was built
-  std::vector<Vec2> mobile_cache_;  // by mobile index, at mobile_cache_time_
+  MobileCoordinates mobile_cache_;  // at mobile_cache_time_
   sim::Time mobile_cache_time_{};
   bool mobile_cache_valid_ = false;
 
@@ -486,30 +489,11 @@ void Radio::for_each_mobile_within(const Vec2& center, double range, Visit&& vis
   if (mobile_ids_.empty()) return;
   const double r2 = range * range;
   if (mobile_ids_.size() <= kMobileScanLimit) {
-    // The distance tests first, without a branch (in or out is a coin toss per robot), then the
-    // few robots in range, in index order.
+    // The distance tests first (disk_mask), then the few robots in range, in index order.
     static_assert(kMobileScanLimit <= 64);
-    const Vec2* const positions = mobile_positions_now().data();
-    const double cx = center.x(), cy = center.y();
-    const std::size_t count = mobile_ids_.size();
-    std::uint64_t in_range = 0;
-    std::size_t m = 0;
-#if defined(__SSE2__)
-    // Two robots per step, the same arithmetic per robot as the scalar loop below.
-    const __m128d vcx = _mm_set1_pd(cx), vcy = _mm_set1_pd(cy), vr2 = _mm_set1_pd(r2);
-    for (; m + 2 <= count; m += 2) {
-      const __m128d first = _mm_loadu_pd(positions[m].data()),
-                    second = _mm_loadu_pd(positions[m + 1].data());
-      const __m128d dx = _mm_sub_pd(_mm_unpacklo_pd(first, second), vcx);
-      const __m128d dy = _mm_sub_pd(_mm_unpackhi_pd(first, second), vcy);
-      const __m128d d2 = _mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy));
-      in_range |= static_cast<std::uint64_t>(_mm_movemask_pd(_mm_cmple_pd(d2, vr2))) << m;
-    }
-#endif
-    for (; m < count; ++m) {
-      const double dx = positions[m].x() - cx, dy = positions[m].y() - cy;
-      in_range |= static_cast<std::uint64_t>(dx * dx + dy * dy <= r2) << m;
-    }
+    const MobileCoordinates& now = mobile_positions_now();
+    std::uint64_t in_range =
+        disk_mask(now.xs.data(), now.ys.data(), mobile_ids_.size(), center.x(), center.y(), r2);
     for (; in_range != 0; in_range &= in_range - 1) {
       const NodeId id = mobile_ids_[static_cast<std::size_t>(std::countr_zero(in_range))];
       if (id != skip_a && id != skip_b) visit(id);
