@@ -18,6 +18,9 @@ namespace masnet::net {
 
 using sim::NodeId;
 
+// Vec2 is 16-byte aligned: it comes last in every payload, so that none exceeds 32 bytes (a
+// Payload is then 48 bytes and a Frame 96; every frame in the air waits in such a record).
+
 /// Periodic "I am here" of the demo scenario.
 struct Beacon {
   NodeId sender;
@@ -31,14 +34,14 @@ struct Position {
 /// Initialisation step 3: a sensor reports its position and measurement to its closest robot.
 struct Report {
   NodeId sensor;
-  Vec2 position;
   double reading;  ///< sent as 32 bits (MessageSizes::measurement_bytes); kept exact here
+  Vec2 position;
 };
 /// Radius-doubling round: "who is within radius_m of me?"
 struct Discover {
   NodeId robot;
-  Vec2 position;
   double radius;  ///< world units; sent as 32 bits
+  Vec2 position;
 };
 /// Reply of a robot to a Discover.
 struct Neighbor {
@@ -55,8 +58,8 @@ struct Sense {
 struct Reading {
   NodeId sensor;
   std::uint32_t update;
-  Vec2 position;
   double reading;  ///< sent as 32 bits (MessageSizes::measurement_bytes); kept exact here
+  Vec2 position;
 };
 
 /// The message types: the built-in ones in variant order, then the types protocols register
@@ -131,10 +134,13 @@ struct Frame {
   /// The sender's count of frames before this one: (source, number) names a transmission, so
   /// a receiver-side cache can tell one SENSE from the next.
   std::uint64_t number = 0;
-  Payload payload;
+  // May share its tail padding with what a record holding the frame adds (the radio's delivery
+  // records: docs/radio-and-energy.md).
+  [[no_unique_address]] Payload payload;
 
   bool is_broadcast() const { return destination == sim::kNoNode; }
 };
+static_assert(sizeof(Frame) <= 96, "a frame waiting for delivery fits in a line and a half");
 
 /// Size on the air of a frame carrying `payload`.
 std::uint32_t size_bytes(const Payload& payload, const MessageSizes& sizes);

@@ -26,12 +26,12 @@ void Radio::deliver(sim::Time arrival, const Outgoing& out, sim::Time sent_at, P
     // consecutive sequence numbers would give, at a fraction of the cost.
     Batch& batch = batch_for(arrival);
     const bool one = receivers.size() == 1;
-    const auto first = static_cast<std::uint32_t>(batch.receivers.size());
-    batch.deliveries.push_back(
-        Delivery{Frame{out.source, out.destination, type, out.bytes, out.range, sent_at,
-                       out.frame_number, std::move(payload)},
-                 one ? receivers[0] : sim::kNoNode, first,
-                 one ? 0u : static_cast<std::uint32_t>(receivers.size())});
+    const auto count = static_cast<std::uint32_t>(receivers.size());
+    batch.deliveries.push_back(Delivery{
+        Frame{out.source, out.destination, type, out.bytes, out.range, sent_at, out.frame_number,
+              std::move(payload)},
+        one ? sim::index(receivers[0]) : static_cast<std::uint32_t>(batch.receivers.size()),
+        count});
     if (!one) batch.receivers.insert(batch.receivers.end(), receivers.begin(), receivers.end());
     return;
   }
@@ -87,8 +87,8 @@ void Radio::run_batch(std::uint32_t batch) {
     // the next ones while this one is handled.
     if (i + kDeliveryLookahead < count) prefetch_delivery(deliveries[i + kDeliveryLookahead]);
     const Delivery& d = deliveries[i];
-    if (d.only != sim::kNoNode) {
-      hand_over(d.frame, d.only);
+    if (d.count == 1) {
+      hand_over(d, sim::node_id(d.first));
       continue;
     }
     // A broadcast's receivers answer at once and their records are far apart on large
@@ -104,7 +104,7 @@ void Radio::run_batch(std::uint32_t batch) {
         __builtin_prefetch(&hot_[ahead]);
         __builtin_prefetch(&senders_[ahead], 1);
       }
-      hand_over(d.frame, ids[k]);
+      hand_over(d, ids[k]);
     }
   }
   Batch& done = batches_[batch];

@@ -27,7 +27,7 @@ void PaperSensorProtocol::on_frame(SensorHost& host, const net::Frame& frame) {
     if (!sense_cell_.contains(host.position())) return;
     if (reply_jitter_s_ <= 0) {
       host.unicast(sense->robot,
-                   net::Reading{host.id(), sense->update, host.position(), host.reading()});
+                   net::Reading{host.id(), sense->update, host.reading(), host.position()});
       return;
     }
     pending_[host.index()].push_back(PendingReply{sense->robot, sense->update});
@@ -57,7 +57,7 @@ void PaperSensorProtocol::on_timer(SensorHost& host, std::uint32_t kind) {
     const PendingReply reply = waiting.front();
     waiting.erase(waiting.begin());
     host.unicast(reply.robot,
-                 net::Reading{host.id(), reply.update, host.position(), host.reading()});
+                 net::Reading{host.id(), reply.update, host.reading(), host.position()});
     return;
   }
   const SensorState& state = states_[host.index()];
@@ -66,7 +66,7 @@ void PaperSensorProtocol::on_timer(SensorHost& host, std::uint32_t kind) {
     const double reading = host.reading();
     MASNET_LOG(log_, trace, "sensor {}: reports {} to its closest robot {}", sim::index(host.id()),
                reading, sim::index(state.closest_robot));
-    host.unicast(state.closest_robot, net::Report{host.id(), host.position(), reading});
+    host.unicast(state.closest_robot, net::Report{host.id(), reading, host.position()});
   }
 }
 

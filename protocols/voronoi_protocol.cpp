@@ -108,7 +108,7 @@ void VoronoiProtocol::discover_round() {
   ++record_.rounds;
   phase_ = Phase::discovering;
   const std::uint32_t bytes =
-      host_.broadcast(radius_m_, net::Discover{host_.id(), position_, radius_m_});
+      host_.broadcast(radius_m_, net::Discover{host_.id(), radius_m_, position_});
   record_.messages.add(net::MessageType::discover, bytes);
   host_.set_timer(sim::seconds(params_.reply_timeout_s), kRoundEnd);
 }

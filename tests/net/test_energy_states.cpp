@@ -59,7 +59,7 @@ TEST_CASE("energy by message type adds up to the totals, first-order model", "[e
     for (std::uint32_t i = 0; i < 20; ++i) {
       radio.broadcast(sim::node_id(i), 0.3, net::Beacon{sim::node_id(i), Vec2{0.05 * i, 0.0}});
       radio.unicast(sim::node_id(i), sim::node_id((i + 3) % 20),
-                    net::Report{sim::node_id(i), Vec2{0.05 * i, 0.0}, 1.0});
+                    net::Report{sim::node_id(i), 1.0, Vec2{0.05 * i, 0.0}});
     }
   });
   simulator.run();

@@ -395,7 +395,7 @@ TEST_CASE("frames booked in bulk on a sensor grid give every node exactly the br
   std::vector<std::uint64_t> heard(n, 0), overheard(n, 0), delivered(n, 0);
   auto send = [&](std::uint32_t src, std::uint32_t dst, double range, int kind) {
     const Vec2 p = radio.position(sim::node_id(src));
-    net::Payload payload = kind == 0 ? net::Payload{net::Discover{sim::node_id(src), p, range}}
+    net::Payload payload = kind == 0 ? net::Payload{net::Discover{sim::node_id(src), range, p}}
                                      : net::Payload{net::Position{sim::node_id(src), p}};
     const auto bytes = net::size_bytes(payload, params.sizes);
     const bool unicast = dst != src;

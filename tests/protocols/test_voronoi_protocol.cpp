@@ -102,7 +102,7 @@ void answer_last(FakeHost& host, VoronoiProtocol& p, const World& w) {
     const ConvexPolygon cell{q->cell};
     for (const auto& [id, pos] : w.sensors)
       if ((pos - host.here).norm() <= s.range && contains(cell, pos))
-        p.on_frame(frame(net::Reading{sim::node_id(id), q->update, pos, 1.0}));
+        p.on_frame(frame(net::Reading{sim::node_id(id), q->update, 1.0, pos}));
   }
 }
 
@@ -117,7 +117,7 @@ void initialise(FakeHost& host, VoronoiProtocol& p, std::vector<double> report_d
   REQUIRE(std::holds_alternative<net::Position>(host.last().payload));
   CHECK(host.last().range == max_range);  // POSITION at max range
   for (double d : report_distances)
-    p.on_frame(frame(net::Report{sim::node_id(100), host.here + Vec2{d, 0.0}, 1.0}));
+    p.on_frame(frame(net::Report{sim::node_id(100), 1.0, host.here + Vec2{d, 0.0}}));
   REQUIRE(host.fire(p, VoronoiProtocol::kInitEnd));
 }
 
@@ -358,7 +358,7 @@ TEST_CASE("stale readings of an earlier update and late replies are ignored", "[
   // A reading tagged with update 1 arriving during update 2 does not count.
   REQUIRE(host.fire(p, VoronoiProtocol::kTick));
   REQUIRE(host.fire(p, VoronoiProtocol::kRoundEnd));
-  p.on_frame(frame(net::Reading{sim::node_id(10), 1, Vec2{0.6, 0.5}, 1.0}));
+  p.on_frame(frame(net::Reading{sim::node_id(10), 1, 1.0, Vec2{0.6, 0.5}}));
   REQUIRE(host.fire(p, VoronoiProtocol::kSenseEnd));
   CHECK(host.records.back().readings == 0);
   CHECK(host.records.back().no_mass);
