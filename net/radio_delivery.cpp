@@ -25,8 +25,8 @@ void Radio::deliver(sim::Time arrival, const Outgoing& out, sim::Time sent_at, P
     // One event delivers to every receiver in id order: the same order separate events with
     // consecutive sequence numbers would give, at a fraction of the cost.
     Batch& batch = batch_for(arrival);
-    const bool one = receivers.size() == 1;
     const auto count = static_cast<std::uint32_t>(receivers.size());
+    const bool one = count == 1;
     batch.deliveries.push_back(Delivery{
         Frame{out.source, out.destination, type, out.bytes, out.range, sent_at, out.frame_number,
               std::move(payload)},
