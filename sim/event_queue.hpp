@@ -6,6 +6,8 @@
 // pop takes the next key of bucket 0. Equal times leave in sequence (scheduling) order.
 // It replaced a 4-ary heap of 24-byte records after the PHOLD benchmark showed it faster
 // (docs/performance.md). No allocation per event once the vectors have grown.
+// Ties can instead follow the origin order (EventKey), which a partition of a run can compute
+// alone (docs/time-and-ordering.md, docs/decisions/0012-partitioned-runs.md).
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -24,8 +26,28 @@ struct EventId {
   bool valid() const { return slot != 0xFFFFFFFFu; }
 };
 
+/// The tie-break of the origin order: events of one time run by `depth` (0, or one more than
+/// that of the event which scheduled them at its own time, so that a zero-delay event follows
+/// its cause), then by the `origin` that scheduled them (0: the world, outside any node), then
+/// by that origin's own count. Every part is known to whoever schedules the event.
+struct EventKey {
+  std::uint32_t depth = 0;
+  std::uint32_t origin = 0;
+  std::uint32_t count = 0;
+  friend constexpr auto operator<=>(const EventKey&, const EventKey&) = default;
+};
+
+/// An event's place in the origin order and the origin its handler acts as.
+struct OriginTag {
+  EventKey key;
+  std::uint32_t owner = 0;
+};
+
 class EventQueue {
  public:
+  /// Breaks ties by EventKey instead of scheduling order. Precondition: empty and never used.
+  void order_ties_by_origin() { by_origin_ = true; }
+  bool ties_by_origin() const { return by_origin_; }
   /// The sequence number the most recent push received (0 before any).
   std::uint64_t last_sequence() const { return next_sequence_ - 1; }
   /// Keys and slots currently held, cancelled ones included.
@@ -36,12 +58,33 @@ class EventQueue {
     free_.reserve(n);
   }
 
-  /// Adds `action` at `time_ns`. Precondition: time_ns >= the time of the last pop.
+  /// Adds `action` at `time_ns`. Precondition: time_ns >= the time of the last pop; ties in
+  /// scheduling order.
   EventId push(std::int64_t time_ns, const EventAction& action) {
     const std::uint32_t slot = reuse_or_append(free_, slots_);
     const std::uint64_t sequence = next_sequence_++;
     slots_[slot] = Slot{action, sequence};
     place(Key{static_cast<std::uint64_t>(time_ns), slot});
+    ++size_;
+    return EventId{slot, sequence};
+  }
+  /// The same in the origin order: `tag` places it among the events of its time.
+  EventId push(std::int64_t time_ns, const EventAction& action, const OriginTag& tag) {
+    const std::uint32_t slot = reuse_or_append(free_, slots_);
+    const std::uint64_t sequence = next_sequence_++;
+    slots_[slot] = Slot{action, sequence};
+    if (tags_.size() <= slot) tags_.resize(slots_.size());
+    tags_[slot] = tag;
+    const Key key{static_cast<std::uint64_t>(time_ns), slot};
+    if (key.time == last_) {
+      // Due now: into the run of keys still waiting in bucket 0, at its place.
+      std::vector<Key>& due = buckets_[0];
+      due.insert(std::upper_bound(due.begin() + static_cast<std::ptrdiff_t>(head_), due.end(), key,
+                                  [this](const Key& a, const Key& b) { return later(b, a); }),
+                 key);
+    } else {
+      place(key);
+    }
     ++size_;
     return EventId{slot, sequence};
   }
@@ -69,9 +112,30 @@ class EventQueue {
 
   /// Removes the first event: its time and action (an empty action if it was cancelled).
   /// Precondition !empty().
-  std::int64_t pop(EventAction& action) {
+  [[gnu::always_inline]] std::int64_t pop(EventAction& action) {
     if (head_ == buckets_[0].size()) [[unlikely]]
       refill();
+    return take(action);
+  }
+  /// pop() in the origin order, also giving the event's tag.
+  std::int64_t pop(EventAction& action, OriginTag& tag) {
+    if (head_ == buckets_[0].size()) [[unlikely]]
+      refill();
+    tag = tags_[buckets_[0][head_].slot];
+    return take(action);
+  }
+
+ private:
+  struct Key {
+    std::uint64_t time;
+    std::uint32_t slot;
+  };
+  struct Slot {
+    EventAction action;  // empty once run or cancelled
+    std::uint64_t sequence = 0;
+  };
+
+  [[gnu::always_inline]] std::int64_t take(EventAction& action) {
     const Key key = buckets_[0][head_];
     Slot& slot = slots_[key.slot];
     action = slot.action;
@@ -85,15 +149,8 @@ class EventQueue {
     return static_cast<std::int64_t>(key.time);
   }
 
- private:
-  struct Key {
-    std::uint64_t time;
-    std::uint32_t slot;
-  };
-  struct Slot {
-    EventAction action;  // empty once run or cancelled
-    std::uint64_t sequence = 0;
-  };
+  // The origin order's tie-break of two keys of one time.
+  bool later(const Key& a, const Key& b) const { return tags_[b.slot].key < tags_[a.slot].key; }
 
   void place(const Key& key) {
     const std::size_t b =
@@ -108,15 +165,17 @@ class EventQueue {
   }
   // Bucket 0 is used up: spread the first non-empty bucket around its minimum, which
   // becomes the new last_. Every key of that bucket lands in a lower bucket.
-  void refill() {
+  [[gnu::always_inline]] void refill() {
     buckets_[0].clear();
     head_ = 0;
     std::vector<Key>& bucket = buckets_[first_bucket()];
     // A small lowest bucket holds the next few events to run: fetch their slots now, so that
     // their pops do not wait for memory (with 10⁵ pending events the slots outgrow the caches).
-    if (bucket.size() <= kPrefetchBelow)
+    if (bucket.size() <= kPrefetchBelow) {
       for (const Key& k : bucket)
         __builtin_prefetch(&slots_[k.slot]);
+      if (by_origin_) prefetch_tags(bucket);
+    }
     std::uint64_t m = bucket[0].time;
     for (const Key& k : bucket)
       m = std::min(m, k.time);
@@ -125,12 +184,26 @@ class EventQueue {
       place(k);
     bucket.clear();
     // Keys reaching bucket 0 together may come in any order; keys pushed later at this time
-    // have larger sequence numbers, so one sort here keeps bucket 0 in scheduling order.
+    // have larger sequence numbers (or are inserted at their place, in the origin order), so
+    // one sort here keeps bucket 0 in tie order.
     std::vector<Key>& due = buckets_[0];
-    if (due.size() > 1)
+    if (due.size() < 2) return;
+    if (by_origin_)  // one test per sort, not per comparison
+      sort_by_origin(due);
+    else
       std::sort(due.begin(), due.end(), [this](const Key& a, const Key& b) {
         return slots_[a.slot].sequence < slots_[b.slot].sequence;
       });
+  }
+  // The origin order's parts stay out of line, and pop, take and refill are forced inline: with
+  // a run loop for each order the compiler stopped inlining the queue into it, and the
+  // scheduling order paid about 20 instructions per event in the kernel benchmark.
+  [[gnu::noinline]] void prefetch_tags(const std::vector<Key>& bucket) const {
+    for (const Key& k : bucket)
+      __builtin_prefetch(&tags_[k.slot]);
+  }
+  [[gnu::noinline]] void sort_by_origin(std::vector<Key>& due) const {
+    std::sort(due.begin(), due.end(), [this](const Key& a, const Key& b) { return later(b, a); });
   }
 
   static constexpr std::size_t kPrefetchBelow = 32;  // 8 gained less (docs/decisions/0005)
@@ -139,6 +212,8 @@ class EventQueue {
   std::uint64_t last_ = 0;
   std::vector<Slot> slots_;
   std::vector<std::uint32_t> free_;
+  std::vector<OriginTag> tags_;  // by slot; the origin order only
+  bool by_origin_ = false;
   std::uint64_t next_sequence_ = 1;
   std::size_t size_ = 0;
 };

@@ -28,18 +28,37 @@ void Simulator::set_progress_hook(std::uint64_t every_events,
   hook_countdown_ = every_events;
 }
 
-template <bool kBounded>
+void Simulator::order_ties_by_origin() {
+  MASNET_ASSERT(queue_.empty() && events_run_ == 0 && queue_.last_sequence() == 0,
+                "the tie order is chosen before anything is scheduled");
+  queue_.order_ties_by_origin();
+}
+
+EventKey Simulator::next_key(Time when) {
+  if (origin_ >= counts_.size()) counts_.resize(std::size_t{origin_} + 1, 0);
+  std::uint32_t& count = counts_[origin_];
+  MASNET_ASSERT(count != 0xFFFFFFFFu, "an origin scheduled more than 2^32 events");
+  // A zero-delay event follows the event that scheduled it (and every event of its depth).
+  return EventKey{when == now_ ? running_.depth + 1 : 0u, origin_, count++};
+}
+
+template <bool kBounded, bool kByOrigin>
 std::uint64_t Simulator::run_loop(std::int64_t limit_ns) {
   const std::uint64_t before = events_run_;
   stop_requested_ = false;
   std::uint64_t countdown = hook_countdown_;  // a local: the loop keeps it in a register
   EventAction action;
+  OriginTag tag;
   while (!queue_.empty()) {
     if (kBounded && queue_.first_time() > limit_ns) break;
-    const std::int64_t time_ns = queue_.pop(action);
+    const std::int64_t time_ns = kByOrigin ? queue_.pop(action, tag) : queue_.pop(action);
     if (!action) {
       --cancelled_pending_;
       continue;
+    }
+    if constexpr (kByOrigin) {
+      origin_ = tag.owner;
+      running_ = tag.key;
     }
     MASNET_ASSERT(time_ns >= to_ns(now_), "time went backwards");
     now_ = Time{Duration{time_ns}};
@@ -55,18 +74,23 @@ std::uint64_t Simulator::run_loop(std::int64_t limit_ns) {
     if (stop_requested_) break;
   }
   hook_countdown_ = countdown;
+  origin_ = 0;  // code between runs acts as the world
   return events_run_ - before;
 }
 
 std::uint64_t Simulator::run_until(Time limit) {
   MASNET_ASSERT(limit >= now_, "run_until a time in the past");
-  const std::uint64_t ran = run_loop<true>(to_ns(limit));
-  if (!stop_requested_) now_ = limit;
+  const std::uint64_t ran = queue_.ties_by_origin() ? run_loop<true, true>(to_ns(limit))
+                                                    : run_loop<true, false>(to_ns(limit));
+  if (!stop_requested_ && now_ != limit) {
+    now_ = limit;
+    running_ = EventKey{};  // nothing ran at this time yet
+  }
   return ran;
 }
 
 std::uint64_t Simulator::run() {
-  return run_loop<false>(0);
+  return queue_.ties_by_origin() ? run_loop<false, true>(0) : run_loop<false, false>(0);
 }
 
 }  // namespace masnet::sim

@@ -25,19 +25,58 @@ class Simulator {
   template <class F>
   EventId after(Duration delay, F&& action) {
     MASNET_ASSERT(delay.count() >= 0, "negative delay: events cannot be scheduled in the past");
-    return queue_.push(to_ns(now_ + delay), EventAction::make(std::forward<F>(action)));
+    return at(now_ + delay, std::forward<F>(action));
   }
-  /// Schedules `action` at absolute time `when`. Precondition: when >= now() (asserted).
+  /// Schedules `action` at absolute time `when`. Precondition: when >= now() (asserted). In
+  /// the origin order it runs as the acting origin.
   template <class F>
   EventId at(Time when, F&& action) {
     MASNET_ASSERT(when >= now_, "event scheduled before the current time");
+    if (queue_.ties_by_origin()) [[unlikely]]
+      return at_keyed(when, next_key(when), origin_, std::forward<F>(action));
     return queue_.push(to_ns(when), EventAction::make(std::forward<F>(action)));
+  }
+
+  // --- The origin order (docs/time-and-ordering.md) ------------------------------------------
+  // Ties between events of one time are broken by an EventKey that the scheduling side computes
+  // alone, so that the parts of a partitioned run agree on one order without asking each other.
+  // Origins are small integers: 0 is the world (code outside any node), a node is its index + 1.
+
+  /// Switches to the origin order. Precondition: nothing has been scheduled yet (asserted).
+  void order_ties_by_origin();
+  bool ties_by_origin() const { return queue_.ties_by_origin(); }
+  /// The origin whose handler is running: the events it schedules count as its own. The kernel
+  /// sets it to each event's owner before running it; a model that hands one event to several
+  /// nodes (a broadcast's receivers) sets it before each.
+  void act_as(std::uint32_t origin) { origin_ = origin; }
+  std::uint32_t acting_origin() const { return origin_; }
+  /// The key of the event being run (of the last one run, between runs): a partition's record
+  /// of what it ran merges with the others' in the one total order by (time, key).
+  const EventKey& running_key() const { return running_; }
+  /// The key of the next event the acting origin schedules at `when` (uses up one of its
+  /// counts). For an event built here and scheduled elsewhere with `at_keyed`.
+  EventKey next_key(Time when);
+  /// Schedules `action` at `when` with a key made by `next_key` (here or in another partition),
+  /// to run as `owner`. Precondition: the origin order, when >= now() (asserted).
+  template <class F>
+  EventId at_keyed(Time when, EventKey key, std::uint32_t owner, F&& action) {
+    MASNET_ASSERT(when >= now_, "event scheduled before the current time");
+    MASNET_ASSERT(queue_.ties_by_origin(), "a keyed event needs the origin order");
+    return queue_.push(to_ns(when), EventAction::make(std::forward<F>(action)),
+                       OriginTag{key, owner});
+  }
+  /// Schedules `action` at `when` to run as `owner` (e.g. a node's first event, scheduled by
+  /// the world). In scheduling order `owner` is ignored.
+  template <class F>
+  EventId at_for(std::uint32_t owner, Time when, F&& action) {
+    if (!queue_.ties_by_origin()) return at(when, std::forward<F>(action));
+    return at_keyed(when, next_key(when), owner, std::forward<F>(action));
   }
   /// Cancels a pending event; returns false if it already ran or was cancelled.
   bool cancel(EventId id);
 
-  /// Runs events in (time, sequence) order while their time is <= `limit`, then sets the
-  /// clock to `limit` (unless stopped early). Returns the number of events run.
+  /// Runs events in (time, sequence) order (or (time, EventKey)) while their time is <= `limit`,
+  /// then sets the clock to `limit` (unless stopped early). Returns the number of events run.
   std::uint64_t run_until(Time limit);
   /// Runs until the queue is empty or `stop()` is called.
   std::uint64_t run();
@@ -68,7 +107,7 @@ class Simulator {
   void reserve(std::size_t n) { queue_.reserve(n); }
 
  private:
-  template <bool kBounded>
+  template <bool kBounded, bool kByOrigin>
   std::uint64_t run_loop(std::int64_t limit_ns);
 
   Time now_ = kTimeZero;
@@ -81,6 +120,10 @@ class Simulator {
   std::uint64_t hook_countdown_ = kNoHook;  // events until the next call
   EventQueue queue_;
   Fingerprint fingerprint_;
+  // The origin order: who acts now, the running event's key, each origin's count.
+  std::uint32_t origin_ = 0;
+  EventKey running_;
+  std::vector<std::uint32_t> counts_;
 };
 
 }  // namespace masnet::sim
