@@ -64,7 +64,7 @@ class EventQueue {
     const std::uint32_t slot = reuse_or_append(free_, slots_);
     const std::uint64_t sequence = next_sequence_++;
     slots_[slot] = Slot{action, sequence};
-    place(Key{static_cast<std::uint64_t>(time_ns), slot});
+    enqueue(Key{static_cast<std::uint64_t>(time_ns), slot});
     ++size_;
     return EventId{slot, sequence};
   }
@@ -75,16 +75,7 @@ class EventQueue {
     slots_[slot] = Slot{action, sequence};
     if (tags_.size() <= slot) tags_.resize(slots_.size());
     tags_[slot] = tag;
-    const Key key{static_cast<std::uint64_t>(time_ns), slot};
-    if (key.time == last_) {
-      // Due now: into the run of keys still waiting in bucket 0, at its place.
-      std::vector<Key>& due = buckets_[0];
-      due.insert(std::upper_bound(due.begin() + static_cast<std::ptrdiff_t>(head_), due.end(), key,
-                                  [this](const Key& a, const Key& b) { return later(b, a); }),
-                 key);
-    } else {
-      place(key);
-    }
+    enqueue(Key{static_cast<std::uint64_t>(time_ns), slot});
     ++size_;
     return EventId{slot, sequence};
   }
@@ -151,11 +142,63 @@ class EventQueue {
 
   // The origin order's tie-break of two keys of one time.
   bool later(const Key& a, const Key& b) const { return tags_[b.slot].key < tags_[a.slot].key; }
+  // The run order of bucket 0: time, then the tie order.
+  bool runs_before(const Key& a, const Key& b) const {
+    if (a.time != b.time) return a.time < b.time;
+    return by_origin_ ? later(b, a) : slots_[a.slot].sequence < slots_[b.slot].sequence;
+  }
 
-  void place(const Key& key) {
-    const std::size_t b =
-        key.time == last_ ? 0 : 64 - static_cast<std::size_t>(std::countl_zero(key.time ^ last_));
-    buckets_[b].push_back(key);
+  std::size_t bucket_of(std::uint64_t time) const {
+    return time == last_ ? 0 : 64 - static_cast<std::size_t>(std::countl_zero(time ^ last_));
+  }
+  void place(const Key& key) { buckets_[bucket_of(key.time)].push_back(key); }
+
+  // A new key: into its bucket, or into the sorted run of bucket 0 if it falls in the run's
+  // range (buckets below run_below_, which are empty meanwhile).
+  void enqueue(const Key& key) {
+    const std::size_t b = bucket_of(key.time);
+    if (b >= run_below_) {
+      buckets_[b].push_back(key);
+      return;
+    }
+    std::vector<Key>& due = buckets_[0];
+    // The usual case: not before the last key of the run (in scheduling order a new key ties
+    // after every key of its time).
+    if (head_ == due.size() || !runs_before(key, due.back())) {
+      due.push_back(key);
+      return;
+    }
+    if (due.size() - head_ >= kRunMax) [[unlikely]] {
+      spread_run(key);
+      return;
+    }
+    due.insert(std::upper_bound(due.begin() + static_cast<std::ptrdiff_t>(head_), due.end(), key,
+                                [this](const Key& a, const Key& b) { return runs_before(a, b); }),
+               key);
+  }
+  // A run grown too long to insert into: its keys and `key` go back to the buckets below
+  // run_below_, around the same last_ (which may be the time of an event that is still
+  // running: later keys must not go below it).
+  [[gnu::noinline]] void spread_run(const Key& key) {
+    std::vector<Key>& due = buckets_[0];
+    spill_.assign(due.begin() + static_cast<std::ptrdiff_t>(head_), due.end());
+    spill_.push_back(key);
+    due.clear();
+    head_ = 0;
+    run_below_ = 1;
+    for (const Key& k : spill_)
+      place(k);
+    sort_due();
+  }
+  void sort_due() {
+    std::vector<Key>& due = buckets_[0];
+    if (due.size() < 2) return;
+    if (by_origin_)  // one test per sort, not per comparison
+      sort_by_origin(due);
+    else
+      std::sort(due.begin(), due.end(), [this](const Key& a, const Key& b) {
+        return slots_[a.slot].sequence < slots_[b.slot].sequence;
+      });
   }
   std::size_t first_bucket() const {
     std::size_t i = 1;
@@ -163,12 +206,14 @@ class EventQueue {
       ++i;
     return i;
   }
-  // Bucket 0 is used up: spread the first non-empty bucket around its minimum, which
-  // becomes the new last_. Every key of that bucket lands in a lower bucket.
+  // Bucket 0 is used up. Take the first non-empty bucket: a small one becomes the new run of
+  // bucket 0, sorted once; a large one is spread around its minimum, which becomes the new
+  // last_ (every key of it lands in a lower bucket).
   [[gnu::always_inline]] void refill() {
     buckets_[0].clear();
     head_ = 0;
-    std::vector<Key>& bucket = buckets_[first_bucket()];
+    const std::size_t first = first_bucket();
+    std::vector<Key>& bucket = buckets_[first];
     // A small lowest bucket holds the next few events to run: fetch their slots now, so that
     // their pops do not wait for memory (with 10⁵ pending events the slots outgrow the caches).
     if (bucket.size() <= kPrefetchBelow) {
@@ -180,20 +225,28 @@ class EventQueue {
     for (const Key& k : bucket)
       m = std::min(m, k.time);
     last_ = m;
+    if (bucket.size() <= kSortBelow) {
+      // Each key would move down a few more times before it runs: sort them instead. Keys
+      // scheduled meanwhile into the same range join the run at their place (enqueue).
+      buckets_[0].swap(bucket);
+      run_below_ = first;
+      sort_run();
+      return;
+    }
+    run_below_ = 1;
     for (const Key& k : bucket)
       place(k);
     bucket.clear();
     // Keys reaching bucket 0 together may come in any order; keys pushed later at this time
     // have larger sequence numbers (or are inserted at their place, in the origin order), so
     // one sort here keeps bucket 0 in tie order.
-    std::vector<Key>& due = buckets_[0];
-    if (due.size() < 2) return;
-    if (by_origin_)  // one test per sort, not per comparison
-      sort_by_origin(due);
-    else
-      std::sort(due.begin(), due.end(), [this](const Key& a, const Key& b) {
-        return slots_[a.slot].sequence < slots_[b.slot].sequence;
-      });
+    sort_due();
+  }
+  void sort_run() {
+    std::vector<Key>& run = buckets_[0];
+    if (run.size() < 2) return;
+    std::sort(run.begin(), run.end(),
+              [this](const Key& a, const Key& b) { return runs_before(a, b); });
   }
   // The origin order's parts stay out of line, and pop, take and refill are forced inline: with
   // a run loop for each order the compiler stopped inlining the queue into it, and the
@@ -207,9 +260,13 @@ class EventQueue {
   }
 
   static constexpr std::size_t kPrefetchBelow = 32;  // 8 gained less (docs/decisions/0005)
+  static constexpr std::size_t kSortBelow = 32;      // a bucket this small becomes a sorted run
+  static constexpr std::size_t kRunMax = 128;        // a run this long is spread on insertion
   std::array<std::vector<Key>, 65> buckets_;
   std::size_t head_ = 0;  // next key of bucket 0
   std::uint64_t last_ = 0;
+  std::size_t run_below_ = 1;  // keys of buckets below this one go into bucket 0's sorted run
+  std::vector<Key> spill_;
   std::vector<Slot> slots_;
   std::vector<std::uint32_t> free_;
   std::vector<OriginTag> tags_;  // by slot; the origin order only

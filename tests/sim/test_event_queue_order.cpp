@@ -93,19 +93,20 @@ class Model {
       sim_.stop();
       return;
     }
-    // Keep about 400 pending: one or two successors, sometimes a burst at one time, sometimes a
-    // cancel.
+    // Keep about 400 pending: one or two successors, sometimes a burst at one time or a scatter
+    // of nearby times first; cancels trim the rest.
     const std::uint64_t what = rng_.below(100);
+    const std::int64_t now_ns = to_ns(sim_.now());
     if (what < 3) {
-      const std::int64_t at = to_ns(sim_.now()) + static_cast<std::int64_t>(rng_.below(2000));
+      const std::int64_t at = now_ns + static_cast<std::int64_t>(rng_.below(2000));
       for (int i = 0; i < 150; ++i)
         schedule_at(at);
-    } else if (what < 50) {
-      schedule();
-    } else {
-      schedule();
-      schedule();
+    } else if (what < 6) {
+      for (int i = 0; i < 150; ++i)
+        schedule_at(now_ns + static_cast<std::int64_t>(rng_.below(5000)));
     }
+    schedule();  // after a burst too: maybe for this very instant
+    if (what >= 50) schedule();
     while (pending_.size() > 400) {
       const std::size_t victim = rng_.below(pending_.size());
       if (sim_.cancel(pending_[victim].id)) {
