@@ -155,12 +155,15 @@ class EventQueue {
 
   // A new key: into its bucket, or into the sorted run of bucket 0 if it falls in the run's
   // range (buckets below run_below_, which are empty meanwhile).
-  void enqueue(const Key& key) {
+  [[gnu::always_inline]] void enqueue(const Key& key) {
     const std::size_t b = bucket_of(key.time);
-    if (b >= run_below_) {
+    if (b >= run_below_) [[likely]] {
       buckets_[b].push_back(key);
       return;
     }
+    join_run(key);
+  }
+  [[gnu::noinline]] void join_run(const Key& key) {
     std::vector<Key>& due = buckets_[0];
     // The usual case: not before the last key of the run (in scheduling order a new key ties
     // after every key of its time).
