@@ -220,18 +220,3 @@ TEST_CASE(
       CHECK(p->wrong_owner == 0);
   }
 }
-
-TEST_CASE("origin order: cancelling and the scheduling-order checks still hold", "[sim]") {
-  Simulator sim;
-  sim.order_ties_by_origin();
-  int ran = 0;
-  sim.act_as(4);
-  EventId drop = sim.after(seconds(1), [&] { ran += 10; });
-  sim.after(seconds(1), [&] { ran += 1; });
-  CHECK(sim.cancel(drop));
-  CHECK_FALSE(sim.cancel(drop));
-  CHECK(sim.pending() == 1);
-  sim.run();
-  CHECK(ran == 1);
-  CHECK(sim.events_run() == 1);
-}
