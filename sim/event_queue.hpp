@@ -3,7 +3,8 @@
 // Tarjan 1990); the actions live in a pool of slots. Simulated time is an integer that never
 // goes back — exactly what a radix heap needs: a push appends a 16-byte key to one of 65
 // buckets, chosen by the highest bit in which its time differs from the last minimum, and a
-// pop takes the next key of bucket 0. Equal times leave in sequence (scheduling) order.
+// pop takes the next key of bucket 0. A small lowest bucket is not spread but sorted once, as a
+// run that keys scheduled into its range join. Equal times leave in sequence (scheduling) order.
 // It replaced a 4-ary heap of 24-byte records after the PHOLD benchmark showed it faster
 // (docs/performance.md). No allocation per event once the vectors have grown.
 // Ties can instead follow the origin order (EventKey), which a partition of a run can compute

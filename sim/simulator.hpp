@@ -65,8 +65,9 @@ class Simulator {
     return queue_.push(to_ns(when), EventAction::make(std::forward<F>(action)),
                        OriginTag{key, owner});
   }
-  /// Schedules `action` at `when` to run as `owner` (e.g. a node's first event, scheduled by
-  /// the world). In scheduling order `owner` is ignored.
+  /// Schedules `action` at `when` to run as `owner` (e.g. a message to a node of the same
+  /// part; a node's own first events are scheduled acting as the node). In scheduling order
+  /// `owner` is ignored.
   template <class F>
   EventId at_for(std::uint32_t owner, Time when, F&& action) {
     if (!queue_.ties_by_origin()) return at(when, std::forward<F>(action));
