@@ -32,7 +32,10 @@ void World::kill(NodeId node, DownCause cause) {
 void World::restart(NodeId node) {
   if (!radio_.bring_up(node)) return;
   if (is_robot(node)) {
+    // The revived protocol's start is the robot's own event (the kernel's origin order).
+    simulator_.act_as(sim::origin_of(node));
     robots_[sim::index(node)]->revive();
+    simulator_.act_as(sim::kWorldOrigin);
     --dead_robots_;
   } else if (is_follower(node)) {
     followers_[sim::index(node) - robots_.size() - def_.sensors.size()]->revive();

@@ -477,7 +477,8 @@ class Radio {
   std::uint32_t open_batch_ = 0xFFFFFFFFu;
   sim::Time open_batch_time_{};
   std::uint64_t open_batch_sequence_ = 0;
-  std::deque<Jittered> jittered_;  // deque: a frame stays put while handlers send new ones
+  sim::EventKey open_batch_key_{};  // in the kernel's origin order
+  std::deque<Jittered> jittered_;   // deque: a frame stays put while handlers send new ones
   std::vector<std::uint32_t> free_jittered_;
   std::vector<NodeId> scratch_receivers_;
   sim::Fingerprint traffic_;  // the per-transmission part of traffic_fingerprint()

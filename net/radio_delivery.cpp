@@ -57,6 +57,8 @@ void Radio::hand_over(const Frame& frame, NodeId receiver) {
     traffic_.mix(kUndeliveredMark ^ frame.number);
     return;
   }
+  // What the receiver's handler schedules is its own (the kernel's origin order).
+  simulator_.act_as(sim::origin_of(receiver));
   sim::Fingerprint& fp = simulator_.fingerprint();
   fp.mix((std::uint64_t{sim::index(frame.source)} << 32) | sim::index(receiver));
   fp.mix((std::uint64_t{static_cast<std::uint8_t>(frame.type)} << 32) | frame.size_bytes);
@@ -64,11 +66,30 @@ void Radio::hand_over(const Frame& frame, NodeId receiver) {
 }
 
 Radio::Batch& Radio::batch_for(sim::Time arrival) {
-  if (open_batch_ != 0xFFFFFFFFu && open_batch_time_ == arrival &&
-      simulator_.last_sequence() == open_batch_sequence_)
-    return batches_[open_batch_];
+  const bool by_origin = simulator_.ties_by_origin();
+  if (open_batch_ != 0xFFFFFFFFu && open_batch_time_ == arrival) {
+    // A separate event would have run right after the batch: in scheduling order if nothing
+    // was scheduled since; in the origin order if the batch was the last event its sender
+    // scheduled (no other key sorts between two consecutive keys of one origin).
+    if (!by_origin && simulator_.last_sequence() == open_batch_sequence_)
+      return batches_[open_batch_];
+    if (by_origin) {
+      const sim::EventKey next = simulator_.peek_key(arrival);
+      if (next.depth == open_batch_key_.depth && next.origin == open_batch_key_.origin &&
+          next.count == open_batch_key_.count + 1)
+        return batches_[open_batch_];
+    }
+  }
   const std::uint32_t batch = sim::reuse_or_append(free_batches_, batches_);
-  const sim::EventId event = simulator_.at(arrival, [this, batch] { run_batch(batch); });
+  sim::EventId event;
+  if (by_origin) {
+    // The batch runs as its sender; it acts as each receiver while handing the frame over.
+    open_batch_key_ = simulator_.next_key(arrival);
+    event = simulator_.at_keyed(arrival, open_batch_key_, simulator_.acting_origin(),
+                                [this, batch] { run_batch(batch); });
+  } else {
+    event = simulator_.at(arrival, [this, batch] { run_batch(batch); });
+  }
   open_batch_ = batch;
   open_batch_time_ = arrival;
   open_batch_sequence_ = event.sequence;

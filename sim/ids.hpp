@@ -18,4 +18,11 @@ inline constexpr NodeId node_id(std::uint32_t i) {
 /// "No node": the broadcast destination and "nothing heard yet".
 inline constexpr NodeId kNoNode = static_cast<NodeId>(0xFFFFFFFFu);
 
+/// The origin of a node's events in the kernel's origin order (docs/time-and-ordering.md);
+/// origin 0 is the world.
+inline constexpr std::uint32_t kWorldOrigin = 0;
+inline constexpr std::uint32_t origin_of(NodeId id) {
+  return index(id) + 1;
+}
+
 }  // namespace masnet::sim

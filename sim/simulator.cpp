@@ -35,11 +35,12 @@ void Simulator::order_ties_by_origin() {
 }
 
 EventKey Simulator::next_key(Time when) {
-  if (origin_ >= counts_.size()) counts_.resize(std::size_t{origin_} + 1, 0);
-  std::uint32_t& count = counts_[origin_];
-  MASNET_ASSERT(count != 0xFFFFFFFFu, "an origin scheduled more than 2^32 events");
   // A zero-delay event follows the event that scheduled it (and every event of its depth).
-  return EventKey{when == now_ ? running_.depth + 1 : 0u, origin_, count++};
+  const EventKey key = peek_key(when);
+  if (origin_ >= counts_.size()) counts_.resize(std::size_t{origin_} + 1, 0);
+  MASNET_ASSERT(key.count != 0xFFFFFFFFu, "an origin scheduled more than 2^32 events");
+  ++counts_[origin_];
+  return key;
 }
 
 template <bool kBounded, bool kByOrigin>

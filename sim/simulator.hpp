@@ -56,6 +56,11 @@ class Simulator {
   /// The key of the next event the acting origin schedules at `when` (uses up one of its
   /// counts). For an event built here and scheduled elsewhere with `at_keyed`.
   EventKey next_key(Time when);
+  /// The key `next_key(when)` would return, without using it up.
+  EventKey peek_key(Time when) const {
+    const std::uint32_t count = origin_ < counts_.size() ? counts_[origin_] : 0;
+    return EventKey{when == now_ ? running_.depth + 1 : 0u, origin_, count};
+  }
   /// Schedules `action` at `when` with a key made by `next_key` (here or in another partition),
   /// to run as `owner`. Precondition: the origin order, when >= now() (asserted).
   template <class F>

@@ -54,12 +54,18 @@ WorldDef moving_layout(std::uint64_t seed) {
 
 // Counts updates and whether each one's neighbour set equals the true one when it ends, and the
 // one of the positions the update heard.
+// In the kernel's origin order it also counts updates that finished while the kernel did not
+// act as their robot (docs/time-and-ordering.md).
 struct Judge : agents::WorldObserver {
   World* world = nullptr;
-  std::uint64_t updates = 0, correct = 0, correct_heard = 0, truncated = 0;
+  std::uint64_t updates = 0, correct = 0, correct_heard = 0, truncated = 0, foreign = 0;
   std::uint32_t max_rounds = 0;
   void on_update(std::size_t robot, const protocols::UpdateRecord& r) override {
     ++updates;
+    // Robots are nodes 0 … R−1.
+    foreign += world->simulator().ties_by_origin() &&
+               world->simulator().acting_origin() !=
+                   sim::origin_of(sim::node_id(static_cast<std::uint32_t>(robot)));
     correct += world->oracle_cell(robot).neighbours == r.neighbours ? 1 : 0;
     correct_heard +=
         protocols::heard_neighbours(r.position, r.heard, world->def().domain) == r.neighbours ? 1
@@ -69,8 +75,9 @@ struct Judge : agents::WorldObserver {
   }
 };
 
-Judge run(const WorldDef& def, double seconds) {
+Judge run(const WorldDef& def, double seconds, bool ties_by_origin = false) {
   sim::Simulator simulator;
+  if (ties_by_origin) simulator.order_ties_by_origin();
   World world(simulator, def);
   Judge judge;
   judge.world = &world;
@@ -84,10 +91,14 @@ Judge run(const WorldDef& def, double seconds) {
 
 TEST_CASE("with the vertex criterion and no loss every update finds exactly the true neighbours",
           "[agents]") {
+  // In either tie order: the protocol's result cannot depend on which of two simultaneous
+  // events runs first.
+  const bool by_origin = GENERATE(false, true);
   std::uint64_t updates = 0;
   for (std::uint64_t seed = 1; seed <= 24; ++seed) {
-    const Judge j = run(layout(seed, protocols::StopCriterion::vertices), 0.2);
-    INFO("layout " << seed);
+    const Judge j = run(layout(seed, protocols::StopCriterion::vertices), 0.2, by_origin);
+    INFO("layout " << seed << (by_origin ? ", origin order" : ""));
+    CHECK(j.foreign == 0);
     CHECK(j.updates > 0);
     CHECK(j.correct == j.updates);
     CHECK(j.correct_heard == j.updates);
@@ -163,17 +174,21 @@ TEST_CASE("loss lowers cell correctness but every update still terminates", "[ag
 
 TEST_CASE("the same world and seed give the same fingerprint and another seed a different one",
           "[agents]") {
-  auto fingerprint = [](std::uint64_t seed) {
+  auto fingerprint = [](std::uint64_t seed, bool by_origin) {
     WorldDef def = layout(3, protocols::StopCriterion::sensors, 0.1);
     def.seed = seed;
     sim::Simulator simulator;
+    if (by_origin) simulator.order_ties_by_origin();
     World world(simulator, def);
     world.start();
     simulator.run_until(sim::time_at(0.1));
     return simulator.fingerprint().value();
   };
-  CHECK(fingerprint(7) == fingerprint(7));
-  CHECK(fingerprint(7) != fingerprint(8));
+  CHECK(fingerprint(7, false) == fingerprint(7, false));
+  CHECK(fingerprint(7, false) != fingerprint(8, false));
+  // The origin order is deterministic too, and it is another order.
+  CHECK(fingerprint(7, true) == fingerprint(7, true));
+  CHECK(fingerprint(7, true) != fingerprint(7, false));
 }
 
 TEST_CASE("the oracle's scanline pass selects exactly the sensors an exact point test selects",
