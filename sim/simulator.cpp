@@ -43,6 +43,10 @@ EventKey Simulator::next_key(Time when) {
   return key;
 }
 
+EventId Simulator::push_by_origin(Time when, const EventAction& action) {
+  return queue_.push(to_ns(when), action, OriginTag{next_key(when), origin_});
+}
+
 template <bool kBounded, bool kByOrigin>
 std::uint64_t Simulator::run_loop(std::int64_t limit_ns) {
   const std::uint64_t before = events_run_;

@@ -32,8 +32,10 @@ class Simulator {
   template <class F>
   EventId at(Time when, F&& action) {
     MASNET_ASSERT(when >= now_, "event scheduled before the current time");
+    // Out of line: inlined at every call site, the origin order's push made the callers too
+    // large to inline what they inlined before (0.6 % more instructions in a 10⁴ run).
     if (queue_.ties_by_origin()) [[unlikely]]
-      return at_keyed(when, next_key(when), origin_, std::forward<F>(action));
+      return push_by_origin(when, EventAction::make(std::forward<F>(action)));
     return queue_.push(to_ns(when), EventAction::make(std::forward<F>(action)));
   }
 
@@ -115,6 +117,7 @@ class Simulator {
  private:
   template <bool kBounded, bool kByOrigin>
   std::uint64_t run_loop(std::int64_t limit_ns);
+  [[gnu::noinline]] EventId push_by_origin(Time when, const EventAction& action);
 
   Time now_ = kTimeZero;
   std::uint64_t events_run_ = 0;
