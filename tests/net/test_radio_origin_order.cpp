@@ -78,7 +78,7 @@ TEST_CASE("origin order: an event of the same origin between two frames splits t
   CHECK(o.foreign == 0);
 }
 
-TEST_CASE("origin order: an event of another origin does not split a batch; it runs by origin",
+TEST_CASE("origin order: an event of another origin does not split a batch and runs by its origin",
           "[net]") {
   // The marker's origin 9 sorts after the world's batch, wherever it was scheduled.
   const Outcome o = run([](std::uint32_t) { return sim::kWorldOrigin; }, 1, 9);
