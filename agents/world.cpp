@@ -130,23 +130,19 @@ void World::start() {
   // counted as the world's, they would be numbered by how many nodes came before).
   for (std::size_t i = 0; i < robots_.size(); ++i) {
     RobotAgent* agent = robots_[i].get();
-    simulator_.act_as(sim::origin_of(robot_node(i)));
-    simulator_.after(sim::Duration{0}, [agent] { agent->protocol().start(); });
+    simulator_.after_as(sim::origin_of(robot_node(i)), sim::Duration{0},
+                        [agent] { agent->protocol().start(); });
   }
-  simulator_.act_as(sim::kWorldOrigin);
   schedule_faults();
   start_groups();
-  simulator_.act_as(sim::kWorldOrigin);
   if (diffusion_)  // the PDE is the one thing that advances on a fixed step
     simulator_.after(sim::seconds(def_.field.diffusion.dt_s), [this] { pde_step(); });
   const BeaconDef& b = def_.beacons;
   if (b.senders == BeaconSenders::none) return;
   auto schedule = [&](NodeId node, std::uint64_t key) {
     auto phase = sim::RandomStream::keyed(def_.seed, key, sim::purpose("beacon.phase"));
-    simulator_.act_as(sim::origin_of(node));
-    simulator_.after(sim::seconds(phase.uniform(0.0, b.period_s)),
-                     [this, node] { send_beacon(node); });
-    simulator_.act_as(sim::kWorldOrigin);
+    simulator_.after_as(sim::origin_of(node), sim::seconds(phase.uniform(0.0, b.period_s)),
+                        [this, node] { send_beacon(node); });
   };
   if (b.senders == BeaconSenders::robots || b.senders == BeaconSenders::all)
     for (std::size_t i = 0; i < robots_.size(); ++i)

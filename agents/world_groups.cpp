@@ -33,16 +33,17 @@ void World::start_groups() {
   const double period_s = def_.formation.state_period_s;
   for (std::size_t g = 0; g < group_count(); ++g) {
     auto phase = sim::RandomStream::keyed(def_.seed, robot_key(g), sim::purpose("formation.phase"));
-    simulator_.act_as(sim::origin_of(robot_node(g)));  // its own first tick (origin order)
-    simulator_.after(sim::seconds(phase.uniform(0.0, period_s)), [this, g] { leader_tick(g); });
+    // Each one's first tick is its own event (the kernel's origin order).
+    simulator_.after_as(sim::origin_of(robot_node(g)), sim::seconds(phase.uniform(0.0, period_s)),
+                        [this, g] { leader_tick(g); });
   }
   for (std::size_t f = 0; f < followers_.size(); ++f) {
     auto phase =
         sim::RandomStream::keyed(def_.seed, follower_key(f), sim::purpose("formation.phase"));
-    simulator_.act_as(sim::origin_of(follower_node(f)));
-    simulator_.after(sim::seconds(phase.uniform(0.0, period_s)), [this, f] { follower_tick(f); });
+    simulator_.after_as(sim::origin_of(follower_node(f)),
+                        sim::seconds(phase.uniform(0.0, period_s)),
+                        [this, f] { follower_tick(f); });
   }
-  simulator_.act_as(sim::kWorldOrigin);
 }
 
 namespace {

@@ -72,6 +72,16 @@ class Simulator {
     return queue_.push(to_ns(when), EventAction::make(std::forward<F>(action)),
                        OriginTag{key, owner});
   }
+  /// Schedules `action` `delay` after now as `origin`'s own event — counted and run as it —
+  /// then acts as before: the world starting a node's work.
+  template <class F>
+  EventId after_as(std::uint32_t origin, Duration delay, F&& action) {
+    const std::uint32_t acting = origin_;
+    origin_ = origin;
+    const EventId id = after(delay, std::forward<F>(action));
+    origin_ = acting;
+    return id;
+  }
   /// Schedules `action` at `when` to run as `owner` (e.g. a message to a node of the same
   /// part; a node's own first events are scheduled acting as the node). In scheduling order
   /// `owner` is ignored.
