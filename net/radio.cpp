@@ -137,9 +137,12 @@ void Radio::schedule_depletion(NodeId id) {
            ? 0.0
            : rx_energy_j(params_.energy, 8.0 * static_cast<double>(heard_bytes_[hot])));
   simulator_.cancel(node.depletion_event);
-  // The idle drain empties the battery at a known time: a scheduled event, not a poll.
+  // The idle drain empties the battery at a known time: a scheduled event, not a poll. Any
+  // node's frame may move it (receptions are booked when sent), so in the origin order its key
+  // names only the node (docs/decisions/0012-partitioned-runs.md).
   const sim::Duration left = sim::seconds(std::max(remaining, 0.0) / params_.energy.idle_power_w);
-  node.depletion_event = simulator_.after(left, [this, id] { kill(id); });
+  node.depletion_event = simulator_.at_instant_end(sim::origin_of(id), simulator_.now() + left,
+                                                   [this, id] { kill(id); });
 }
 
 void Radio::mix_refusal(NodeId source) {

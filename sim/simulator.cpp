@@ -38,7 +38,9 @@ EventKey Simulator::next_key(Time when) {
   // A zero-delay event follows the event that scheduled it (and every event of its depth).
   const EventKey key = peek_key(when);
   if (origin_ >= counts_.size()) counts_.resize(std::size_t{origin_} + 1, 0);
-  MASNET_ASSERT(key.count != 0xFFFFFFFFu, "an origin scheduled more than 2^32 events");
+  MASNET_ASSERT(key.count != kReservedCount, "an origin scheduled more than 2^32 events");
+  MASNET_ASSERT(key.depth != kInstantEndDepth && (when != now_ || key.depth != 0),
+                "a chain of zero-delay events reached the depth of the instant's end");
   ++counts_[origin_];
   return key;
 }

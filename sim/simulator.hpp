@@ -90,6 +90,23 @@ class Simulator {
     if (!queue_.ties_by_origin()) return at(when, std::forward<F>(action));
     return at_keyed(when, next_key(when), owner, std::forward<F>(action));
   }
+  /// Schedules `action` at `when` to run as `owner` after every other event of that time (in
+  /// the scheduling order: like `at`). Its key names the owner alone — no count, no depth of a
+  /// cause — so whoever schedules it, at whatever moment, gives it the same place: for an event
+  /// of which an owner has at most one pending (its battery running empty), booked by the
+  /// events of other nodes too. Events it schedules at its own time follow it.
+  template <class F>
+  EventId at_instant_end(std::uint32_t owner, Time when, F&& action) {
+    if (!queue_.ties_by_origin()) return at(when, std::forward<F>(action));
+    MASNET_ASSERT(when >= now_, "event scheduled before the current time");
+    return queue_.push(to_ns(when), EventAction::make(std::forward<F>(action)),
+                       OriginTag{EventKey{kInstantEndDepth, owner, kReservedCount}, owner});
+  }
+  /// The depth of `at_instant_end`'s keys: above any chain of zero-delay events (asserted).
+  static constexpr std::uint32_t kInstantEndDepth = 0xFFFF0000u;
+  /// The count of `at_instant_end`'s keys, which no origin's own count reaches (asserted).
+  static constexpr std::uint32_t kReservedCount = 0xFFFFFFFFu;
+
   /// Cancels a pending event; returns false if it already ran or was cancelled.
   bool cancel(EventId id);
 

@@ -94,3 +94,74 @@ TEST_CASE("origin order: frames of different senders are separate events, in ori
   CHECK(o.order == std::vector<int>{3, 2, 1, 0});
   CHECK(o.foreign == 0);
 }
+
+namespace {
+
+struct Emptied {
+  NodeId node;
+  std::uint32_t acting;
+  sim::EventKey key;
+};
+struct Drain {
+  sim::Time node1_died_at = sim::kTimeMax;
+  std::vector<Emptied> emptied;
+  int node1_alive_at_marker = -1;
+};
+
+// Nodes 0 and 1 drain 0.5 W from 2 J; node 0 broadcasts 1000 frames at t = 1 (as node 0), which
+// moves node 1's emptying earlier. A marker scheduled at t = 3 (after the emptying was) for
+// `marker`, if given, looks whether node 1 is still alive.
+Drain drain(bool by_origin, sim::Time marker) {
+  Drain out;
+  sim::Simulator sim;
+  if (by_origin) sim.order_ties_by_origin();
+  net::RadioParams params;
+  params.energy.idle_power_w = 0.5;
+  params.energy.battery_j = 2.0;
+  net::Radio radio(sim, params, 1);
+  struct : net::RadioListener {
+    sim::Simulator* sim;
+    Drain* out;
+    void on_frame(NodeId, const net::Frame&) override {}
+    void on_battery_empty(NodeId node) override {
+      out->emptied.push_back(Emptied{node, sim->acting_origin(), sim->running_key()});
+    }
+  } listener;
+  listener.sim = &sim;
+  listener.out = &out;
+  radio.set_listener(&listener);
+  radio.add_static_node(sim::node_id(0), Vec2{0, 0}, 0);
+  radio.add_static_node(sim::node_id(1), Vec2{0.01, 0}, 1);
+  sim.after_as(sim::origin_of(sim::node_id(0)), sim::seconds(1.0), [&radio] {
+    for (int k = 0; k < 1000; ++k)
+      radio.broadcast(sim::node_id(0), 0.02, net::Beacon{sim::node_id(0), Vec2{0, 0}});
+  });
+  if (marker != sim::kTimeMax)
+    sim.at(sim::time_at(3.0), [&] {
+      sim.at(marker, [&] { out.node1_alive_at_marker = radio.alive(sim::node_id(1)); });
+    });
+  sim.run_until(sim::time_at(10.0));
+  out.node1_died_at = radio.stats(sim::node_id(1)).died_at;
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("origin order: a battery runs empty as its node, after every other event of its instant",
+          "[net]") {
+  const Drain first = drain(true, sim::kTimeMax);
+  REQUIRE(first.emptied.size() == 2);
+  for (const Emptied& e : first.emptied) {
+    CHECK(e.acting == sim::origin_of(e.node));
+    CHECK(e.key == sim::EventKey{sim::Simulator::kInstantEndDepth, sim::origin_of(e.node),
+                                 sim::Simulator::kReservedCount});
+  }
+  // The moment is the scheduling order's; only its place among ties differs: a marker
+  // scheduled later for that very instant runs before the emptying in the origin order, after
+  // it in the scheduling order.
+  const sim::Time died = first.node1_died_at;
+  REQUIRE(died < sim::time_at(10.0));
+  CHECK(drain(false, sim::kTimeMax).node1_died_at == died);
+  CHECK(drain(true, died).node1_alive_at_marker == 1);
+  CHECK(drain(false, died).node1_alive_at_marker == 0);
+}

@@ -75,6 +75,48 @@ TEST_CASE("origin order: an event runs as its owner and a key made now can be sc
   CHECK(sim.acting_origin() == 0);  // between runs: the world
 }
 
+TEST_CASE("origin order: an event at the instant's end keeps its place whoever schedules it",
+          "[sim]") {
+  // Owner 4's event at t = 1 is scheduled acting as 9, cancelled, and scheduled again acting as
+  // 2 while t = 1 runs: it still runs after every other event of t = 1 (the world's, zero-delay
+  // chains scheduled after it), as owner 4, before owner 6's; its own zero-delay event follows.
+  Simulator sim;
+  sim.order_ties_by_origin();
+  std::vector<char> order;
+  std::vector<EventKey> keys;
+  std::vector<std::uint32_t> owners;
+  auto record = [&](char name) {
+    order.push_back(name);
+    keys.push_back(sim.running_key());
+    owners.push_back(sim.acting_origin());
+    if (name == 'e') sim.after(Duration{0}, [&] { order.push_back('g'); });
+  };
+  auto at_end = [r = &record](char name) { return [r, name] { (*r)(name); }; };
+  sim.act_as(9);
+  const EventId first = sim.at_instant_end(4, time_at(1), at_end('x'));
+  sim.act_as(6);
+  sim.at_instant_end(6, time_at(1), at_end('f'));
+  sim.act_as(1);
+  sim.at(time_at(1), [&] {  // (0, 1, 0)
+    order.push_back('a');
+    CHECK(sim.cancel(first));
+    sim.act_as(2);
+    sim.at_instant_end(4, time_at(1), at_end('e'));
+    sim.after(Duration{0}, [&] {  // (1, 2, 0)
+      order.push_back('c');
+      sim.after(Duration{0}, [&] { order.push_back('d'); });  // (2, 2, 1)
+    });
+  });
+  sim.act_as(0);
+  sim.at(time_at(1), [&] { order.push_back('w'); });  // (0, 0, 0): the world's, first
+  sim.run();
+  CHECK(order == std::vector<char>{'w', 'a', 'c', 'd', 'e', 'f', 'g'});
+  CHECK(keys ==
+        std::vector<EventKey>{EventKey{Simulator::kInstantEndDepth, 4, Simulator::kReservedCount},
+                              EventKey{Simulator::kInstantEndDepth, 6, Simulator::kReservedCount}});
+  CHECK(owners == std::vector<std::uint32_t>{4, 6});
+}
+
 namespace {
 
 // A small network on a coarse clock so that ties are frequent: every event of a node mixes
