@@ -381,6 +381,11 @@ LoadResult load_scenario_text(const std::string& text, const std::string& file_n
     def.seed = *seed;
     top.resolve("seed", static_cast<std::int64_t>(*seed));
   }
+  // Absent, it stays out of summary.json (runs as before the key existed).
+  const bool has_tie_order = top.has("tie_order");
+  def.ties_by_origin =
+      top.choice<bool>("tie_order", false, {{"scheduling", false}, {"origin", true}});
+  if (!has_tie_order) reader.resolved().erase("tie_order");
   const std::size_t errors_before_duration = reader.diagnostics().size();
   if (!top.has("duration"))
     top.error_at("duration", "missing required key 'duration' (seconds of simulated time)");

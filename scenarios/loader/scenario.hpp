@@ -46,6 +46,9 @@ struct ScenarioDef {
   bool baseline = false;
   /// Pollution counts as cleaned when Σ readings falls below this; 0 = 5 % of the peak.
   double clean_threshold = 0.0;
+  /// Events of one instant in the kernel's origin order instead of the scheduling order
+  /// (docs/time-and-ordering.md): `tie_order: origin`.
+  bool ties_by_origin = false;
   nlohmann::json resolved;  ///< every key with its value, defaults included
 };
 

@@ -12,9 +12,17 @@
 namespace masnet::scenarios {
 namespace fs = std::filesystem;
 
+namespace {
+std::unique_ptr<sim::Simulator> make_simulator(const ScenarioDef& def) {
+  auto simulator = std::make_unique<sim::Simulator>();
+  if (def.ties_by_origin) simulator->order_ties_by_origin();  // before the world schedules
+  return simulator;
+}
+}  // namespace
+
 Run::Run(ScenarioDef def)
     : def_(std::move(def)),
-      simulator_(std::make_unique<sim::Simulator>()),
+      simulator_(make_simulator(def_)),
       world_(std::make_unique<agents::World>(*simulator_, def_.world)),
       recorder_(std::make_unique<Recorder>(*world_, def_)) {
   world_->set_observer(recorder_.get());
