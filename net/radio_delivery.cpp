@@ -68,36 +68,39 @@ void Radio::hand_over(const Frame& frame, NodeId receiver) {
 }
 
 Radio::Batch& Radio::batch_for(sim::Time arrival) {
-  const bool by_origin = simulator_.ties_by_origin();
-  if (open_batch_ != 0xFFFFFFFFu && open_batch_time_ == arrival) {
-    // A separate event would have run right after the batch: in scheduling order if nothing
-    // was scheduled since; in the origin order if the batch was the last event its sender
-    // scheduled (no other key sorts between two consecutive keys of one origin).
-    if (!by_origin && simulator_.last_sequence() == open_batch_sequence_)
-      return batches_[open_batch_];
-    if (by_origin) {
-      const sim::EventKey next = simulator_.peek_key(arrival);
-      if (next.depth == open_batch_key_.depth && next.origin == open_batch_key_.origin &&
-          next.count == open_batch_key_.count + 1)
-        return batches_[open_batch_];
-    }
-  }
+  const bool open = open_batch_ != 0xFFFFFFFFu && open_batch_time_ == arrival;
+  if (simulator_.ties_by_origin()) [[unlikely]]
+    return batch_by_origin(arrival, open);
+  // A separate event would have run right after the batch if nothing was scheduled since.
+  if (open && simulator_.last_sequence() == open_batch_sequence_) return batches_[open_batch_];
   const std::uint32_t batch = sim::reuse_or_append(free_batches_, batches_);
-  sim::EventId event;
-  if (by_origin) {
-    // The batch runs as its sender; it acts as each receiver while handing the frame over.
-    open_batch_key_ = simulator_.next_key(arrival);
-    event = simulator_.at_keyed(arrival, open_batch_key_, simulator_.acting_origin(),
-                                [this, batch] { run_batch(batch); });
-  } else {
-    event = simulator_.at(arrival, [this, batch] { run_batch(batch); });
-  }
+  open_batch_sequence_ =
+      simulator_.at(arrival, [this, batch] { run_batch<false>(batch); }).sequence;
   open_batch_ = batch;
   open_batch_time_ = arrival;
-  open_batch_sequence_ = event.sequence;
   return batches_[batch];
 }
 
+Radio::Batch& Radio::batch_by_origin(sim::Time arrival, bool open) {
+  // The frame takes the key its own event would have had. It joins the open batch if that key
+  // comes after the batch's last: the batch then hands the frames over in key order, each as
+  // its own event would have run (run_batch<true> lets other events of the instant run between).
+  const sim::EventKey key = simulator_.next_key(arrival);
+  if (open && batches_[open_batch_].keys.back() < key) {
+    batches_[open_batch_].keys.push_back(key);
+    return batches_[open_batch_];
+  }
+  const std::uint32_t batch = sim::reuse_or_append(free_batches_, batches_);
+  batches_[batch].keys.push_back(key);
+  // It runs as its first frame's sender; hand_over acts as each receiver.
+  simulator_.at_keyed(arrival, key, simulator_.acting_origin(),
+                      [this, batch] { run_batch<true>(batch); });
+  open_batch_ = batch;
+  open_batch_time_ = arrival;
+  return batches_[batch];
+}
+
+template <bool kByOrigin>
 void Radio::run_batch(std::uint32_t batch) {
   if (open_batch_ == batch) open_batch_ = 0xFFFFFFFFu;  // closed: nothing joins it any more
   // Handlers may open new batches and so move `batches_`' elements, never this batch's buffers:
@@ -105,7 +108,20 @@ void Radio::run_batch(std::uint32_t batch) {
   const Delivery* const deliveries = batches_[batch].deliveries.data();
   const NodeId* const receivers = batches_[batch].receivers.data();
   const std::size_t count = batches_[batch].deliveries.size();
-  for (std::size_t i = 0; i < count; ++i) {
+  const std::size_t begin = kByOrigin ? batches_[batch].next : 0;
+  for (std::size_t i = begin; i < count; ++i) {
+    if constexpr (kByOrigin) {
+      // Another event of this instant sorts before this frame's own: it runs first, and the
+      // rest of the batch after it, keyed by this frame.
+      const sim::EventKey key = batches_[batch].keys[i];
+      if (i > begin && !simulator_.nothing_due_before(key)) {
+        batches_[batch].next = static_cast<std::uint32_t>(i);
+        simulator_.at_keyed(simulator_.now(), key, key.origin,
+                            [this, batch] { run_batch<true>(batch); });
+        return;
+      }
+      simulator_.continue_as(key);
+    }
     // The frames were written a while ago (a reply burst's round trip of other traffic): fetch
     // the next ones while this one is handled.
     if (i + kDeliveryLookahead < count) prefetch_delivery(deliveries[i + kDeliveryLookahead]);
@@ -133,6 +149,10 @@ void Radio::run_batch(std::uint32_t batch) {
   Batch& done = batches_[batch];
   done.deliveries.clear();
   done.receivers.clear();
+  if constexpr (kByOrigin) {
+    done.keys.clear();
+    done.next = 0;
+  }
   // A burst of a whole network (initial reports) should not stay allocated.
   if (done.deliveries.capacity() > kKeptBatchCapacity)
     std::vector<Delivery>().swap(done.deliveries);

@@ -90,6 +90,16 @@ class EventQueue {
     return true;
   }
 
+  /// Origin order: false if a pending event of time `time_ns` sorts before `key`. Called while
+  /// an event of that time runs, when every key of that time is in bucket 0 from its head
+  /// (keys of one time always share a bucket, and bucket 0 is in run order). A cancelled event
+  /// counts too.
+  bool nothing_before(std::uint64_t time_ns, const EventKey& key) const {
+    if (head_ == buckets_[0].size()) return true;
+    const Key& first = buckets_[0][head_];
+    return first.time != time_ns || !(tags_[first.slot].key < key);
+  }
+
   /// Time of the first key; precondition !empty(). Leaves the order untouched.
   std::int64_t first_time() const {
     if (head_ == buckets_[0].size()) [[unlikely]] {

@@ -63,6 +63,18 @@ class Simulator {
     const std::uint32_t count = origin_ < counts_.size() ? counts_[origin_] : 0;
     return EventKey{when == now_ ? running_.depth + 1 : 0u, origin_, count};
   }
+  /// An event that does the work of several — a delivery batch, one frame after another —
+  /// asks before each part whether a separate event with `key` would run next: false if an
+  /// event of this instant (a cancelled one too) sorts before it. Precondition: origin order.
+  bool nothing_due_before(const EventKey& key) const {
+    return queue_.nothing_before(static_cast<std::uint64_t>(to_ns(now_)), key);
+  }
+  /// ...and then runs that part as if it were that event: what it schedules for this instant
+  /// follows `key`. Precondition: origin order, key not below the running key (asserted).
+  void continue_as(const EventKey& key) {
+    MASNET_ASSERT(!(key < running_), "an event's parts continue in key order");
+    running_ = key;
+  }
   /// Schedules `action` at `when` with a key made by `next_key` (here or in another partition),
   /// to run as `owner`. Precondition: the origin order, when >= now() (asserted).
   template <class F>

@@ -1,6 +1,7 @@
 // The radio in the kernel's origin order (docs/time-and-ordering.md): a receiver's handler acts
-// as the receiver, and frames due together share one event only when a separate event per
-// frame would have run right after the batch — the same sender, nothing else scheduled by it.
+// as the receiver, and frames due together share one event that hands them over in the order
+// of their own keys, letting any other event of the instant keyed between two of them run
+// between them.
 #include <catch2/catch.hpp>
 
 #include <vector>
@@ -19,7 +20,8 @@ namespace {
 struct Outcome {
   std::uint64_t events = 0;
   std::vector<int> order;
-  int foreign = 0;  // receptions handled while not acting as the receiver
+  int foreign = 0;                  // receptions handled while not acting as the receiver
+  std::vector<sim::EventKey> keys;  // the running key at each reception
 };
 
 template <class SenderOrigin>
@@ -34,6 +36,7 @@ Outcome run(SenderOrigin sender_origin, int marker, std::uint32_t marker_origin)
     void on_frame(NodeId receiver, const net::Frame& f) override {
       out->order.push_back(static_cast<int>(sim::index(f.source)));
       out->foreign += sim->acting_origin() != sim::origin_of(receiver);
+      out->keys.push_back(sim->running_key());
     }
   } listener;
   listener.sim = &sim;
@@ -86,7 +89,30 @@ TEST_CASE("origin order: an event of another origin does not split a batch and r
   CHECK(o.order == std::vector<int>{0, 1, 2, 3, -1});
 }
 
-TEST_CASE("origin order: frames of different senders are separate events, in origin order",
+TEST_CASE("origin order: frames of several senders share one event, each handed over as its own",
+          "[net]") {
+  // Sent acting as senders 0, 1, 2, 3 in turn: one event, each frame with its own key.
+  const Outcome o = run([](std::uint32_t i) { return sim::origin_of(sim::node_id(i)); }, -1, 0);
+  CHECK(o.events == 1);
+  CHECK(o.order == std::vector<int>{0, 1, 2, 3});
+  CHECK(o.foreign == 0);
+  std::vector<sim::EventKey> own;
+  for (std::uint32_t i = 0; i < 4; ++i)
+    own.push_back(sim::EventKey{0, sim::origin_of(sim::node_id(i)), 0});
+  CHECK(o.keys == own);
+}
+
+TEST_CASE("origin order: an event keyed between two senders' frames runs between them", "[net]") {
+  // The marker is sender 2's second event at the arrival: after its frame, before sender 3's.
+  const Outcome o = run([](std::uint32_t i) { return sim::origin_of(sim::node_id(i)); }, 2,
+                        sim::origin_of(sim::node_id(2)));
+  CHECK(o.events == 3);  // frames 0-2, the marker, frame 3 (the rest of the batch)
+  CHECK(o.order == std::vector<int>{0, 1, 2, -1, 3});
+  CHECK(o.foreign == 0);
+  CHECK(o.keys.back() == sim::EventKey{0, sim::origin_of(sim::node_id(3)), 0});
+}
+
+TEST_CASE("origin order: frames sent in descending key order are separate events, in key order",
           "[net]") {
   // Sent acting as senders 3, 2, 1, 0 in turn, they arrive by origin: sender 3 first.
   const Outcome o = run([](std::uint32_t i) { return sim::origin_of(sim::node_id(3 - i)); }, -1, 0);

@@ -75,6 +75,34 @@ TEST_CASE("origin order: an event runs as its owner and a key made now can be sc
   CHECK(sim.acting_origin() == 0);  // between runs: the world
 }
 
+TEST_CASE(
+    "origin order: an event doing the work of several lets events keyed between its parts run",
+    "[sim]") {
+  // One event stands for parts keyed (0, 2, 0) and (0, 6, 0) — say, two frames of one delivery
+  // batch; origin 4's event sorts between them.
+  Simulator sim;
+  sim.order_ties_by_origin();
+  std::vector<char> order;
+  sim.act_as(6);
+  const EventKey second = sim.next_key(time_at(1));
+  sim.act_as(4);
+  sim.at(time_at(1), [&] { order.push_back('m'); });
+  sim.act_as(2);
+  sim.at(time_at(1), [&] {
+    order.push_back('a');
+    CHECK(sim.nothing_due_before(EventKey{0, 3, 0}));  // origin 4's event is after it
+    CHECK_FALSE(sim.nothing_due_before(second));
+    sim.at_keyed(time_at(1), second, 6, [&] {  // the rest, as its own event
+      CHECK(sim.nothing_due_before(second));
+      sim.continue_as(second);
+      order.push_back('b');
+      sim.after(Duration{0}, [&] { order.push_back('z'); });  // follows the part, one deeper
+    });
+  });
+  sim.run();
+  CHECK(order == std::vector<char>{'a', 'm', 'b', 'z'});
+}
+
 TEST_CASE("origin order: an event at the instant's end keeps its place whoever schedules it",
           "[sim]") {
   // Owner 4's event at t = 1 is scheduled acting as 9, cancelled, and scheduled again acting as
