@@ -131,6 +131,8 @@ class Simulator {
   void stop() { stop_requested_ = true; }
 
   std::uint64_t events_run() const { return events_run_; }
+  /// The time of the earliest pending event (a cancelled one counts too); kTimeMax if none.
+  Time next_time() const { return queue_.empty() ? kTimeMax : Time{Duration{queue_.first_time()}}; }
   /// The sequence number of the most recently scheduled event: if it is still the one a caller
   /// got from `at`, nothing was scheduled since (lets a caller extend that event instead of
   /// scheduling a new one right behind it).

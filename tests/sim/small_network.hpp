@@ -1,0 +1,112 @@
+#pragma once
+// A small network on a coarse clock for the partitioned-run tests: nodes exchange messages that
+// take at least kLookahead and set themselves timers, often for the same instant, so ties are
+// frequent. A Part runs some of the nodes on its own simulator in the origin order and keeps a
+// record of every event it ran; messages to nodes of other parts wait in its outbox with their
+// keys.
+#include <algorithm>
+#include <cstdint>
+#include <tuple>
+#include <vector>
+
+#include "sim/simulator.hpp"
+
+namespace masnet::test {
+
+using namespace masnet::sim;
+
+// Every event of a node mixes what it receives into the node's state, then sends a message to a
+// node of its choice (at least kLookahead later) or sets itself a timer, sometimes for the same
+// instant.
+constexpr std::int64_t kTick = 1000;
+constexpr std::int64_t kLookahead = 5 * kTick;
+constexpr std::uint32_t kNodes = 12;
+
+inline std::uint64_t mix(std::uint64_t h, std::uint64_t v) {
+  h ^= v + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
+  h *= 0xBF58476D1CE4E5B9ull;
+  return h ^ (h >> 31);
+}
+
+struct Executed {
+  std::int64_t time_ns;
+  EventKey key;
+  std::uint32_t node;
+  std::uint64_t state;
+  friend bool operator==(const Executed&, const Executed&) = default;
+};
+
+struct Message {
+  std::int64_t time_ns;
+  EventKey key;
+  std::uint32_t to;
+  std::uint64_t value;
+};
+
+// One partition: the nodes [first, last) on their own simulator; messages to other nodes go to
+// the outbox with their keys.
+struct Part {
+  Simulator sim;
+  std::uint32_t first, last;
+  std::vector<std::uint64_t> state = std::vector<std::uint64_t>(kNodes, 0);
+  std::vector<std::uint64_t> draws = std::vector<std::uint64_t>(kNodes, 0);
+  std::vector<Executed> log;
+  std::vector<Message> outbox;
+  int wrong_owner = 0;
+
+  Part(std::uint32_t a, std::uint32_t b) : first(a), last(b) { sim.order_ties_by_origin(); }
+  bool owns(std::uint32_t node) const { return node >= first && node < last; }
+  static std::uint32_t origin(std::uint32_t node) { return node + 1; }
+
+  // Each node schedules its own first events: counted as the world's, they would depend on how
+  // many nodes the part sets up.
+  void start() {
+    for (std::uint32_t n = first; n < last; ++n) {
+      sim.act_as(origin(n));
+      for (std::int64_t k = 0; k < 3; ++k)
+        sim.at(kTimeZero + Duration{k * kTick}, [this, n] { handle(n, n); });
+    }
+    sim.act_as(0);
+  }
+  void handle(std::uint32_t node, std::uint64_t value) {
+    if (sim.acting_origin() != origin(node)) ++wrong_owner;
+    std::uint64_t& s = state[node];
+    s = mix(s, value);
+    log.push_back(Executed{to_ns(sim.now()), sim.running_key(), node, s});
+    // One successor per event (the population stays constant): a message, or a timer of the
+    // node's own, often for the same instant.
+    const std::uint64_t r = mix(node, ++draws[node]);  // the node's own random stream
+    if ((r >> 16) % 3 == 0) {
+      const Duration delay{static_cast<std::int64_t>((r >> 20) % 3) * kTick};
+      sim.after(delay, [this, node, v = r] { handle(node, v); });
+      return;
+    }
+    const auto to = static_cast<std::uint32_t>(r % kNodes);
+    const Time arrival =
+        sim.now() + Duration{kLookahead + static_cast<std::int64_t>((r >> 8) % 3) * kTick};
+    if (owns(to))
+      sim.at_for(origin(to), arrival, [this, to, v = s] { handle(to, v); });
+    else
+      outbox.push_back(Message{to_ns(arrival), sim.next_key(arrival), to, s});
+  }
+  void receive(const Message& m) {
+    sim.at_keyed(kTimeZero + Duration{m.time_ns}, m.key, origin(m.to),
+                 [this, to = m.to, v = m.value] { handle(to, v); });
+  }
+};
+
+inline bool in_total_order(const Executed& a, const Executed& b) {
+  return std::tie(a.time_ns, a.key) < std::tie(b.time_ns, b.key);
+}
+
+// Hands every message in the parts' outboxes to the part that owns its addressee.
+inline void exchange(const std::vector<Part*>& parts) {
+  for (Part* from : parts) {
+    for (const Message& m : from->outbox)
+      for (Part* to : parts)
+        if (to->owns(m.to)) to->receive(m);
+    from->outbox.clear();
+  }
+}
+
+}  // namespace masnet::test
