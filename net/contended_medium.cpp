@@ -375,8 +375,10 @@ void ContendedMedium::delivered(const Transmission& tx, const Reception& r) {
     const std::uint32_t sequence = tx.mac_sequence;
     const MessageType type = tx.frame.type;
     go_deaf(receiver, 2 * symbols(params_.turnaround_symbols) + radio_.airtime(params_.ack_bytes));
-    radio_.simulator_.after(
-        symbols(params_.turnaround_symbols), [this, receiver, source, sequence, type] {
+    // The ACK is the receiver's transmission: in the kernel's origin order, its own event.
+    radio_.simulator_.after_as(
+        sim::origin_of(receiver), symbols(params_.turnaround_symbols),
+        [this, receiver, source, sequence, type] {
           const double range = (radio_.position(source) - radio_.position(receiver)).norm();
           const Frame ack{receiver,
                           source,

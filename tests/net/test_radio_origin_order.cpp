@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "net/contended_medium.hpp"
 #include "net/radio.hpp"
 
 using namespace masnet;
@@ -190,4 +191,27 @@ TEST_CASE("origin order: a battery runs empty as its node, after every other eve
   CHECK(drain(false, sim::kTimeMax).node1_died_at == died);
   CHECK(drain(true, died).node1_alive_at_marker == 1);
   CHECK(drain(false, died).node1_alive_at_marker == 0);
+}
+
+TEST_CASE("origin order: under csma the addressee acknowledges as itself", "[net]") {
+  // The ACK is the addressee's transmission: its events must count as the addressee's own,
+  // though the frame's end (the sender's event) decides that it is due.
+  sim::Simulator sim;
+  sim.order_ties_by_origin();
+  net::RadioParams params;
+  params.level = net::RadioLevel::csma;
+  net::Radio radio(sim, params, 1);
+  radio.add_static_node(sim::node_id(0), Vec2{0, 0}, 0);
+  radio.add_static_node(sim::node_id(1), Vec2{0.05, 0}, 1);
+  sim.after_as(sim::origin_of(sim::node_id(0)), sim::seconds(1e-3), [&radio] {
+    radio.unicast(sim::node_id(0), sim::node_id(1), net::Beacon{sim::node_id(0), Vec2{0, 0}});
+  });
+  sim.run();
+  const net::ContentionCounters totals = radio.contention()->totals(net::MessageType::beacon);
+  CHECK(totals.delivered == 1);
+  CHECK(radio.contention()->node_counters(sim::node_id(1)).acks == 1);
+  CHECK(totals.retries == 0);  // the ACK reached the sender
+  // The addressee scheduled its turnaround and its ACK's end: counted as its own events.
+  sim.act_as(sim::origin_of(sim::node_id(1)));
+  CHECK(sim.peek_key(sim.now() + sim::seconds(1)).count >= 2);
 }
