@@ -6,10 +6,6 @@
 
 namespace masnet::sim {
 namespace {
-std::uint32_t thread_count(unsigned threads, std::size_t parts) {
-  return static_cast<std::uint32_t>(
-      std::clamp<std::size_t>(threads, 1, std::max<std::size_t>(parts, 1)));
-}
 constexpr int kSpins = 500;  // then sleep: docs/performance.md, "Windows on threads"
 }  // namespace
 
@@ -34,13 +30,14 @@ void WindowedRun::Barrier::arrive_and_wait() {
 WindowedRun::WindowedRun(std::vector<Simulator*> parts, Duration lookahead, unsigned threads)
     : parts_(std::move(parts)),
       lookahead_(lookahead),
-      start_(thread_count(threads, parts_.size())),
-      done_(thread_count(threads, parts_.size())) {
+      threads_(std::clamp<unsigned>(threads, 1,
+                                    std::max<unsigned>(static_cast<unsigned>(parts_.size()), 1))),
+      start_(threads_),
+      done_(threads_) {
   MASNET_ASSERT(lookahead_.count() > 0, "a windowed run needs a positive lookahead");
   for (const Simulator* part : parts_)
     MASNET_ASSERT(part->ties_by_origin(), "the parts of a windowed run use the origin order");
-  const std::uint32_t count = thread_count(threads, parts_.size());
-  for (unsigned t = 1; t < count; ++t)
+  for (unsigned t = 1; t < threads_; ++t)
     workers_.emplace_back([this, t] { work(t); });
 }
 

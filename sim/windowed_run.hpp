@@ -35,7 +35,7 @@ class WindowedRun {
   void run_until(Time end, const std::function<void(Time window_end)>& exchange);
 
   std::uint64_t windows() const { return windows_; }
-  unsigned threads() const { return static_cast<unsigned>(workers_.size()) + 1; }
+  unsigned threads() const { return threads_; }
 
  private:
   void run_share(unsigned thread);  // the parts thread, thread + threads(), ... to window_end_
@@ -56,6 +56,7 @@ class WindowedRun {
 
   std::vector<Simulator*> parts_;
   Duration lookahead_;
+  unsigned threads_;  // the calling one included
   std::vector<std::thread> workers_;
   Barrier start_, done_;  // around each window
   Time window_end_{};

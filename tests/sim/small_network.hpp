@@ -6,6 +6,7 @@
 // keys.
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <tuple>
 #include <vector>
 
@@ -108,5 +109,26 @@ inline void exchange(const std::vector<Part*>& parts) {
     from->outbox.clear();
   }
 }
+
+// The network cut at `cuts` (node boundaries, first 0, last kNodes), each part started.
+struct Parts {
+  std::vector<std::unique_ptr<Part>> owned;
+  std::vector<Part*> all;
+  explicit Parts(const std::vector<std::uint32_t>& cuts) {
+    for (std::size_t p = 0; p + 1 < cuts.size(); ++p) {
+      owned.push_back(std::make_unique<Part>(cuts[p], cuts[p + 1]));
+      all.push_back(owned.back().get());
+      all.back()->start();
+    }
+  }
+  // Every part's record of executed events, merged in the total order (time, key).
+  std::vector<Executed> merged_log() const {
+    std::vector<Executed> merged;
+    for (const Part* p : all)
+      merged.insert(merged.end(), p->log.begin(), p->log.end());
+    std::sort(merged.begin(), merged.end(), in_total_order);
+    return merged;
+  }
+};
 
 }  // namespace masnet::test

@@ -168,13 +168,8 @@ TEST_CASE(
 
   for (const std::vector<std::uint32_t>& cuts :
        {std::vector<std::uint32_t>{0, 5, kNodes}, std::vector<std::uint32_t>{0, 3, 7, kNodes}}) {
-    std::vector<Part*> parts;
-    std::vector<std::unique_ptr<Part>> owned;
-    for (std::size_t p = 0; p + 1 < cuts.size(); ++p) {
-      owned.push_back(std::make_unique<Part>(cuts[p], cuts[p + 1]));
-      parts.push_back(owned.back().get());
-      parts.back()->start();
-    }
+    Parts cut(cuts);
+    const std::vector<Part*>& parts = cut.all;
     // Conservative windows of one lookahead: nothing sent in [t, t + L) arrives before t + L.
     for (Time t = kTimeZero; t <= end;) {
       const Time window_end = std::min(end, t + Duration{kLookahead - 1});
@@ -183,10 +178,7 @@ TEST_CASE(
       exchange(parts);
       t = window_end + Duration{1};
     }
-    std::vector<Executed> merged;
-    for (Part* p : parts)
-      merged.insert(merged.end(), p->log.begin(), p->log.end());
-    std::sort(merged.begin(), merged.end(), in_total_order);
+    const std::vector<Executed> merged = cut.merged_log();
     // The first difference, if any, tells more than two long lists.
     std::size_t same = 0;
     while (same < merged.size() && same < whole.log.size() && merged[same] == whole.log[same])

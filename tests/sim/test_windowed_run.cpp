@@ -3,7 +3,6 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-#include <memory>
 #include <vector>
 
 #include "sim/windowed_run.hpp"
@@ -24,15 +23,11 @@ struct Outcome {
 };
 
 Outcome run_in_parts(const std::vector<std::uint32_t>& cuts, unsigned threads, Time end) {
-  std::vector<std::unique_ptr<Part>> owned;
-  std::vector<Part*> parts;
+  Parts cut(cuts);
+  const std::vector<Part*>& parts = cut.all;
   std::vector<Simulator*> simulators;
-  for (std::size_t p = 0; p + 1 < cuts.size(); ++p) {
-    owned.push_back(std::make_unique<Part>(cuts[p], cuts[p + 1]));
-    parts.push_back(owned.back().get());
-    simulators.push_back(&parts.back()->sim);
-    parts.back()->start();
-  }
+  for (Part* p : parts)
+    simulators.push_back(&p->sim);
   Outcome out;
   {
     WindowedRun run(simulators, Duration{kLookahead}, threads);
@@ -45,12 +40,11 @@ Outcome run_in_parts(const std::vector<std::uint32_t>& cuts, unsigned threads, T
     });
     out.windows = run.windows();
   }
-  for (Part* p : parts) {
-    out.merged.insert(out.merged.end(), p->log.begin(), p->log.end());
+  for (const Part* p : parts) {
     out.clocks_at_end = out.clocks_at_end && p->sim.now() == end;
     out.wrong_owner += p->wrong_owner;
   }
-  std::sort(out.merged.begin(), out.merged.end(), in_total_order);
+  out.merged = cut.merged_log();
   return out;
 }
 
