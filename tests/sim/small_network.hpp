@@ -3,7 +3,9 @@
 // take at least kLookahead and set themselves timers, often for the same instant, so ties are
 // frequent. A Part runs some of the nodes on its own simulator in the origin order and keeps a
 // record of every event it ran; messages to nodes of other parts wait in its outbox with their
-// keys.
+// keys. Optionally one node is *watched*: every sender reads its state at send time, as the radio
+// reads a robot's position — a coupling with no lookahead, which a part can only honour by running
+// that node itself (`Watch::everywhere`).
 #include <algorithm>
 #include <cstdint>
 #include <memory>
@@ -44,25 +46,39 @@ struct Message {
   std::uint64_t value;
 };
 
-// One partition: the nodes [first, last) on their own simulator; messages to other nodes go to
-// the outbox with their keys.
+// The node whose state every message carries (none: kNodes), and whether every part runs it.
+struct Watch {
+  std::uint32_t node = kNodes;
+  bool everywhere = false;
+};
+
+// One partition: the nodes [first, last) on their own simulator (and the watched node, when every
+// part runs it); messages to other nodes go to the outbox with their keys.
 struct Part {
   Simulator sim;
   std::uint32_t first, last;
+  Watch watch;
   std::vector<std::uint64_t> state = std::vector<std::uint64_t>(kNodes, 0);
   std::vector<std::uint64_t> draws = std::vector<std::uint64_t>(kNodes, 0);
   std::vector<Executed> log;
   std::vector<Message> outbox;
   int wrong_owner = 0;
 
-  Part(std::uint32_t a, std::uint32_t b) : first(a), last(b) { sim.order_ties_by_origin(); }
-  bool owns(std::uint32_t node) const { return node >= first && node < last; }
+  Part(std::uint32_t a, std::uint32_t b, Watch w = {}) : first(a), last(b), watch(w) {
+    sim.order_ties_by_origin();
+  }
+  /// The node's home: the one part whose record of it counts.
+  bool holds(std::uint32_t node) const { return node >= first && node < last; }
+  /// Run by every part.
+  bool everywhere(std::uint32_t node) const { return watch.everywhere && node == watch.node; }
+  bool owns(std::uint32_t node) const { return holds(node) || everywhere(node); }
   static std::uint32_t origin(std::uint32_t node) { return node + 1; }
 
   // Each node schedules its own first events: counted as the world's, they would depend on how
   // many nodes the part sets up.
   void start() {
-    for (std::uint32_t n = first; n < last; ++n) {
+    for (std::uint32_t n = 0; n < kNodes; ++n) {
+      if (!owns(n)) continue;
       sim.act_as(origin(n));
       for (std::int64_t k = 0; k < 3; ++k)
         sim.at(kTimeZero + Duration{k * kTick}, [this, n] { handle(n, n); });
@@ -85,10 +101,16 @@ struct Part {
     const auto to = static_cast<std::uint32_t>(r % kNodes);
     const Time arrival =
         sim.now() + Duration{kLookahead + static_cast<std::int64_t>((r >> 8) % 3) * kTick};
+    // What a message carries may depend on the watched node's state now.
+    const std::uint64_t carried = watch.node < kNodes ? mix(s, state[watch.node]) : s;
+    // Every part that runs the sender uses up its key; the one that holds the addressee (or
+    // every part, for a node run everywhere) schedules the message. A node run everywhere sends
+    // from every part, so nothing of its goes out; the others ship what other parts need.
+    const EventKey key = sim.next_key(arrival);
     if (owns(to))
-      sim.at_for(origin(to), arrival, [this, to, v = s] { handle(to, v); });
-    else
-      outbox.push_back(Message{to_ns(arrival), sim.next_key(arrival), to, s});
+      sim.at_keyed(arrival, key, origin(to), [this, to, carried] { handle(to, carried); });
+    if (!everywhere(node) && (!owns(to) || everywhere(to)))
+      outbox.push_back(Message{to_ns(arrival), key, to, carried});
   }
   void receive(const Message& m) {
     sim.at_keyed(kTimeZero + Duration{m.time_ns}, m.key, origin(m.to),
@@ -100,12 +122,12 @@ inline bool in_total_order(const Executed& a, const Executed& b) {
   return std::tie(a.time_ns, a.key) < std::tie(b.time_ns, b.key);
 }
 
-// Hands every message in the parts' outboxes to the part that owns its addressee.
+// Hands every message in the parts' outboxes to the other parts that run its addressee.
 inline void exchange(const std::vector<Part*>& parts) {
   for (Part* from : parts) {
     for (const Message& m : from->outbox)
       for (Part* to : parts)
-        if (to->owns(m.to)) to->receive(m);
+        if (to != from && to->owns(m.to)) to->receive(m);
     from->outbox.clear();
   }
 }
@@ -114,18 +136,20 @@ inline void exchange(const std::vector<Part*>& parts) {
 struct Parts {
   std::vector<std::unique_ptr<Part>> owned;
   std::vector<Part*> all;
-  explicit Parts(const std::vector<std::uint32_t>& cuts) {
+  explicit Parts(const std::vector<std::uint32_t>& cuts, Watch watch = {}) {
     for (std::size_t p = 0; p + 1 < cuts.size(); ++p) {
-      owned.push_back(std::make_unique<Part>(cuts[p], cuts[p + 1]));
+      owned.push_back(std::make_unique<Part>(cuts[p], cuts[p + 1], watch));
       all.push_back(owned.back().get());
       all.back()->start();
     }
   }
-  // Every part's record of executed events, merged in the total order (time, key).
+  // Every part's record of the events of the nodes it holds, merged in the total order (time,
+  // key).
   std::vector<Executed> merged_log() const {
     std::vector<Executed> merged;
     for (const Part* p : all)
-      merged.insert(merged.end(), p->log.begin(), p->log.end());
+      for (const Executed& e : p->log)
+        if (p->holds(e.node)) merged.push_back(e);
     std::sort(merged.begin(), merged.end(), in_total_order);
     return merged;
   }

@@ -1,5 +1,6 @@
 // WindowedRun (sim/windowed_run.hpp): the parts of a run in conservative windows on a pool of
-// threads give the run in one piece, event for event, whatever the number of threads.
+// threads give the run in one piece, event for event, whatever the number of threads — also
+// when every sender reads one node's state at send time, if every part runs that node.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -19,11 +20,14 @@ struct Outcome {
   unsigned threads = 0;
   bool clocks_at_end = true;
   int wrong_owner = 0;
-  int too_early = 0;  // messages due before the end of the window that sent them
+  int too_early = 0;              // messages due before the end of the window that sent them
+  std::vector<Executed> watched;  // the first part's record of a node every part runs
+  bool replicas_agree = true;     // ... and every other part's is the same
 };
 
-Outcome run_in_parts(const std::vector<std::uint32_t>& cuts, unsigned threads, Time end) {
-  Parts cut(cuts);
+Outcome run_in_parts(const std::vector<std::uint32_t>& cuts, unsigned threads, Time end,
+                     Watch watch = {}) {
+  Parts cut(cuts, watch);
   const std::vector<Part*>& parts = cut.all;
   std::vector<Simulator*> simulators;
   for (Part* p : parts)
@@ -45,7 +49,25 @@ Outcome run_in_parts(const std::vector<std::uint32_t>& cuts, unsigned threads, T
     out.wrong_owner += p->wrong_owner;
   }
   out.merged = cut.merged_log();
+  // A node run by every part: each part's record of it is the same.
+  if (watch.everywhere)
+    for (const Part* p : parts) {
+      std::vector<Executed> mine;
+      for (const Executed& e : p->log)
+        if (e.node == watch.node) mine.push_back(e);
+      if (p == parts.front())
+        out.watched = mine;
+      else
+        out.replicas_agree = out.replicas_agree && mine == out.watched;
+    }
   return out;
+}
+
+std::vector<Executed> run_whole(Time end, Watch watch = {}) {
+  Part whole(0, kNodes, watch);
+  whole.start();
+  whole.sim.run_until(end);
+  return whole.log;
 }
 
 }  // namespace
@@ -91,4 +113,50 @@ TEST_CASE("a windowed run starts each window at the earliest pending event", "[s
   CHECK(exchanges == 2);
   CHECK(a.now() == time_at(3.0));
   CHECK(b.now() == time_at(3.0));
+}
+
+TEST_CASE(
+    "a node read at send time by every sender, run by every part, keeps the parts equal to the "
+    "run in one piece",
+    "[sim]") {
+  // The radio reads a robot's position when a sensor sends: robots change course at any event,
+  // so a part cannot learn where one is a lookahead in advance — it runs every robot itself,
+  // each one's messages reaching every part (docs/decisions/0012-partitioned-runs.md).
+  const Time end = time_at(0.01);
+  for (std::uint32_t watched : {0u, 4u, kNodes - 1}) {
+    const std::vector<Executed> whole = run_whole(end, Watch{watched, false});
+    REQUIRE(whole.size() > 1000);
+    std::vector<Executed> whole_watched;
+    for (const Executed& e : whole)
+      if (e.node == watched) whole_watched.push_back(e);
+    REQUIRE(whole_watched.size() > 50);
+    for (const std::vector<std::uint32_t>& cuts :
+         {std::vector<std::uint32_t>{0, 5, kNodes}, std::vector<std::uint32_t>{0, 3, 7, kNodes}}) {
+      for (unsigned threads : {1u, 2u}) {
+        const Outcome o = run_in_parts(cuts, threads, end, Watch{watched, true});
+        INFO("watched: " << watched << ", parts: " << cuts.size() - 1 << ", threads: " << threads);
+        CHECK(o.merged == whole);
+        CHECK(o.watched == whole_watched);
+        CHECK(o.replicas_agree);
+        CHECK(o.wrong_owner == 0);
+        CHECK(o.too_early == 0);
+      }
+    }
+  }
+}
+
+TEST_CASE(
+    "a node read at send time but run by one part only leaves the others reading a stale "
+    "state",
+    "[sim]") {
+  // Why the node must run everywhere: the exchange after each window is too late for a read
+  // with no lookahead.
+  const Time end = time_at(0.01);
+  const Watch watch{4, false};
+  const std::vector<Executed> whole = run_whole(end, watch);
+  const Outcome o = run_in_parts({0, 5, kNodes}, 1, end, watch);
+  CHECK(o.merged.size() == whole.size());  // the same events ...
+  CHECK(o.merged != whole);                // ... carrying other values
+  // Without the read the same cut is exact: the difference is the read's alone.
+  CHECK(run_in_parts({0, 5, kNodes}, 1, end).merged == run_whole(end));
 }
