@@ -25,6 +25,13 @@ struct Outcome {
   bool replicas_agree = true;     // ... and every other part's is the same
 };
 
+std::vector<Executed> events_of(const std::vector<Executed>& log, std::uint32_t node) {
+  std::vector<Executed> mine;
+  for (const Executed& e : log)
+    if (e.node == node) mine.push_back(e);
+  return mine;
+}
+
 Outcome run_in_parts(const std::vector<std::uint32_t>& cuts, unsigned threads, Time end,
                      Watch watch = {}) {
   Parts cut(cuts, watch);
@@ -52,9 +59,7 @@ Outcome run_in_parts(const std::vector<std::uint32_t>& cuts, unsigned threads, T
   // A node run by every part: each part's record of it is the same.
   if (watch.everywhere)
     for (const Part* p : parts) {
-      std::vector<Executed> mine;
-      for (const Executed& e : p->log)
-        if (e.node == watch.node) mine.push_back(e);
+      const std::vector<Executed> mine = events_of(p->log, watch.node);
       if (p == parts.front())
         out.watched = mine;
       else
@@ -75,10 +80,8 @@ std::vector<Executed> run_whole(Time end, Watch watch = {}) {
 TEST_CASE("a windowed run on 1, 2 or 3 threads gives the run in one piece, event for event",
           "[sim]") {
   const Time end = time_at(0.01);
-  Part whole(0, kNodes);
-  whole.start();
-  whole.sim.run_until(end);
-  REQUIRE(whole.log.size() > 1000);
+  const std::vector<Executed> whole = run_whole(end);
+  REQUIRE(whole.size() > 1000);
   for (const std::vector<std::uint32_t>& cuts :
        {std::vector<std::uint32_t>{0, 5, kNodes}, std::vector<std::uint32_t>{0, 3, 7, kNodes},
         std::vector<std::uint32_t>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, kNodes}}) {
@@ -86,7 +89,7 @@ TEST_CASE("a windowed run on 1, 2 or 3 threads gives the run in one piece, event
       const Outcome o = run_in_parts(cuts, threads, end);
       INFO("parts: " << cuts.size() - 1 << ", threads: " << threads);
       CHECK(o.threads == std::min<unsigned>(threads, static_cast<unsigned>(cuts.size() - 1)));
-      CHECK(o.merged == whole.log);
+      CHECK(o.merged == whole);
       CHECK(o.clocks_at_end);
       CHECK(o.wrong_owner == 0);
       CHECK(o.too_early == 0);  // the lookahead holds
@@ -126,9 +129,7 @@ TEST_CASE(
   for (std::uint32_t watched : {0u, 4u, kNodes - 1}) {
     const std::vector<Executed> whole = run_whole(end, Watch{watched, false});
     REQUIRE(whole.size() > 1000);
-    std::vector<Executed> whole_watched;
-    for (const Executed& e : whole)
-      if (e.node == watched) whole_watched.push_back(e);
+    const std::vector<Executed> whole_watched = events_of(whole, watched);
     REQUIRE(whole_watched.size() > 50);
     for (const std::vector<std::uint32_t>& cuts :
          {std::vector<std::uint32_t>{0, 5, kNodes}, std::vector<std::uint32_t>{0, 3, 7, kNodes}}) {
