@@ -105,8 +105,8 @@ class World::RobotAgent final : public protocols::RobotHost {
     if (world_.def_.motion.jump_to_target) world_.radio_.mobile_node_jumped();
   }
   void update_finished(const protocols::UpdateRecord& record) override {
-    world_.simulator_.fingerprint().mix(sim::bits_of(record.centroid.x()));
-    world_.simulator_.fingerprint().mix(sim::bits_of(record.centroid.y()));
+    world_.simulator_.fingerprint_stream().mix(sim::bits_of(record.centroid.x()));
+    world_.simulator_.fingerprint_stream().mix(sim::bits_of(record.centroid.y()));
     if (world_.observer_) world_.observer_->on_update(index_, record);
   }
   double sensor_area(NodeId sensor) const override {

@@ -215,7 +215,7 @@ void World::pde_step() {
   if (spraying)
     for (std::size_t i = 0; i < robots_.size(); ++i)
       neutraliser_used_[i] -= report.injections[def_.field.sources.size() + i].applied;
-  simulator_.fingerprint().mix(sim::bits_of(diffusion_->mass()));
+  simulator_.fingerprint_stream().mix(sim::bits_of(diffusion_->mass()));
   simulator_.after(sim::seconds(dt), [this] { pde_step(); });
 }
 

@@ -25,7 +25,7 @@ void World::kill(NodeId node, DownCause cause) {
   } else {
     ++dead_sensors_;
   }
-  simulator_.fingerprint().mix((std::uint64_t{0xD0} << 56) | sim::index(node));
+  simulator_.fingerprint_stream().mix((std::uint64_t{0xD0} << 56) | sim::index(node));
   if (observer_) observer_->on_node_down(node, cause);
 }
 
@@ -42,7 +42,7 @@ void World::restart(NodeId node) {
   } else {
     --dead_sensors_;
   }
-  simulator_.fingerprint().mix((std::uint64_t{0x0B} << 56) | sim::index(node));
+  simulator_.fingerprint_stream().mix((std::uint64_t{0x0B} << 56) | sim::index(node));
   if (observer_) observer_->on_node_up(node);
 }
 
@@ -86,7 +86,7 @@ std::vector<NodeId> World::fault_victims(std::size_t f) {
 
 void World::strike(std::size_t f) {
   const FaultDef& fault = def_.faults[f];
-  simulator_.fingerprint().mix((std::uint64_t{0xFA} << 56) | (f << 1) | 1);
+  simulator_.fingerprint_stream().mix((std::uint64_t{0xFA} << 56) | (f << 1) | 1);
   const auto id = static_cast<std::uint32_t>(f);
   switch (fault.kind) {
     case FaultKind::kill:
@@ -107,7 +107,7 @@ void World::strike(std::size_t f) {
 }
 
 void World::lift(std::size_t f) {
-  simulator_.fingerprint().mix((std::uint64_t{0xFA} << 56) | (f << 1));
+  simulator_.fingerprint_stream().mix((std::uint64_t{0xFA} << 56) | (f << 1));
   if (def_.faults[f].kind == FaultKind::kill)
     for (NodeId node : fault_victims_[f])
       restart(node);

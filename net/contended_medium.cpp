@@ -179,8 +179,8 @@ void ContendedMedium::begin_transmission(NodeId node, const Frame& frame, bool i
     return;
   }
   radio_.senders_[node_index].energy_tx_j += tx_j;
-  radio_.total_tx_j_ += tx_j;
-  radio_.tx_j_by_type_[static_cast<std::size_t>(frame.type)] += tx_j;
+  radio_.total_tx_j_.add(tx_j);
+  radio_.tx_j_by_type_[static_cast<std::size_t>(frame.type)].add(tx_j);
   if (battery && radio_.params_.energy.idle_power_w > 0) radio_.schedule_depletion(node);
 
   const sim::Time now = radio_.simulator_.now();
@@ -268,11 +268,11 @@ void ContendedMedium::begin_transmission(NodeId node, const Frame& frame, bool i
                    [&](const Reception& r) { return r.receiver == frame.destination; }))
     ++radio_.nodes_[node_index].unreachable_count;
   on_air_.push_back(slot);
-  radio_.traffic_.mix(static_cast<std::uint64_t>(sim::to_ns(now)));
-  radio_.traffic_.mix((std::uint64_t{sim::index(node)} << 32) | sim::index(frame.destination));
-  radio_.traffic_.mix(
-      (std::uint64_t{is_ack ? 0xFFu : static_cast<std::uint8_t>(frame.type)} << 32) |
-      frame.size_bytes);
+  sim::Fingerprint& traffic = radio_.senders_[node_index].traffic;
+  traffic.mix(static_cast<std::uint64_t>(sim::to_ns(now)));
+  traffic.mix((std::uint64_t{sim::index(node)} << 32) | sim::index(frame.destination));
+  traffic.mix((std::uint64_t{is_ack ? 0xFFu : static_cast<std::uint8_t>(frame.type)} << 32) |
+              frame.size_bytes);
   radio_.simulator_.at(tx.end, [this, slot] { end_transmission(slot); });
 }
 
@@ -351,7 +351,7 @@ void ContendedMedium::end_transmission(std::uint32_t index) {
       delivered(tx, r);
     }
   }
-  radio_.traffic_.mix((received << 32) ^ lost);
+  radio_.senders_[sim::index(source)].traffic.mix((received << 32) ^ lost);
   if (tx.is_ack) {
     if (acknowledged_now) ack_received(tx.frame.destination, tx.mac_sequence);
     return;

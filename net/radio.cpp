@@ -146,8 +146,9 @@ void Radio::schedule_depletion(NodeId id) {
 }
 
 void Radio::mix_refusal(NodeId source) {
-  traffic_.mix(static_cast<std::uint64_t>(sim::to_ns(simulator_.now())));
-  traffic_.mix(kRefusedMark | sim::index(source));
+  sim::Fingerprint& traffic = senders_[sim::index(source)].traffic;
+  traffic.mix(static_cast<std::uint64_t>(sim::to_ns(simulator_.now())));
+  traffic.mix(kRefusedMark | sim::index(source));
 }
 
 void Radio::kill(NodeId id) {  // the battery is empty
@@ -218,8 +219,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     return false;
   }
   src.energy_tx_j += tx_j;
-  total_tx_j_ += tx_j;
-  tx_j_by_type_[static_cast<std::size_t>(type)] += tx_j;
+  total_tx_j_.add(tx_j);
+  tx_j_by_type_[static_cast<std::size_t>(type)].add(tx_j);
   if (battery && params_.energy.idle_power_w > 0) schedule_depletion(source);
   const auto type_index = static_cast<std::size_t>(type);
   MASNET_ASSERT(type_index < type_count_, "a message type registered after the radio was built");
@@ -252,12 +253,12 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   totals_[type_index].rx_bytes += heard.received * bytes;
   total_heard_bytes_ += heard.hearers * bytes;
   heard_bytes_by_type_[type_index] += heard.hearers * bytes;
-  // What this frame did, in send order. Its overhearers are not here: the second thread may be
-  // counting them still; they enter the traffic fingerprint as per-node sums at the end.
-  traffic_.mix(static_cast<std::uint64_t>(sim::to_ns(now)));
-  traffic_.mix((std::uint64_t{sim::index(source)} << 32) | sim::index(destination));
-  traffic_.mix((std::uint64_t{static_cast<std::uint8_t>(type)} << 32) | bytes);
-  traffic_.mix((heard.received << 32) ^ heard.lost);
+  // What this frame did, in its sender's send order. Its overhearers are not here: the second
+  // thread may be counting them still; they enter the traffic fingerprint as per-node sums.
+  src.traffic.mix(static_cast<std::uint64_t>(sim::to_ns(now)));
+  src.traffic.mix((std::uint64_t{sim::index(source)} << 32) | sim::index(destination));
+  src.traffic.mix((std::uint64_t{static_cast<std::uint8_t>(type)} << 32) | bytes);
+  src.traffic.mix((heard.received << 32) ^ heard.lost);
   // Delivery: the receivers get it at its arrival.
   if (scratch_receivers_.empty()) return true;
   deliver(arrival, out, now, std::move(payload));

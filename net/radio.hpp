@@ -26,6 +26,7 @@
 #include "net/propagation.hpp"
 #include "net/spatial_grid.hpp"
 #include "net/vec2.hpp"
+#include "sim/exact_sum.hpp"
 #include "sim/simulator.hpp"
 
 namespace masnet::net {
@@ -164,7 +165,7 @@ class Radio {
     return totals_[static_cast<std::size_t>(type)];
   }
   /// Radio energy booked so far over all nodes (idle drain excluded), joules.
-  double total_tx_energy_j() const { return total_tx_j_; }
+  double total_tx_energy_j() const { return total_tx_j_.value(); }
   double total_rx_energy_j() const {
     drain_overhearing();
     return rx_energy_j(params_.energy, 8.0 * static_cast<double>(total_heard_bytes_));
@@ -172,7 +173,7 @@ class Radio {
   /// Radio energy of the frames of one type (and, under csma, of their acknowledgements):
   /// sending them, and every node hearing them, joules.
   double type_tx_energy_j(MessageType type) const {
-    return tx_j_by_type_[static_cast<std::size_t>(type)];
+    return tx_j_by_type_[static_cast<std::size_t>(type)].value();
   }
   double type_rx_energy_j(MessageType type) const {
     drain_overhearing();
@@ -209,9 +210,9 @@ class Radio {
   /// Airtime of a frame of `bytes`.
   sim::Duration airtime(std::uint32_t bytes) const;
 
-  /// A hash of the radio's outcomes so far: every transmission in send order (time, sender,
-  /// addressee, type, bytes, receptions, losses), every refusal and every frame that found its
-  /// receiver dead, then every node's counters, overhearing, energy and death, in id order.
+  /// A hash of the radio's outcomes so far, node by node in id order: its transmissions in its
+  /// send order (time, addressee, type, bytes, receptions, losses), its refusals and the frames
+  /// that found it dead; then every node's counters, overhearing, energy and death.
   /// The simulator's fingerprint sees only frames handed to a listener; this one also sees
   /// what nobody handled (docs/radio-and-energy.md). The same with or without the second thread.
   sim::Fingerprint traffic_fingerprint();
@@ -245,6 +246,10 @@ class Radio {
     double energy_tx_j = 0.0;
     std::uint64_t frames_sent = 0;
     sim::Time busy_until{};  // `airtime` level: when its queued frames are all sent
+    // What its frames did, in its send order, its refusals, and the frames that found it dead:
+    // the node's part of traffic_fingerprint(), kept by node so that where it is booked does
+    // not matter (docs/decisions/0012-partitioned-runs.md).
+    sim::Fingerprint traffic;
   };
   // A frame in the air. Without jitter it waits inside its delivery batch (below), written
   // and read in order; with jitter each reception is its own event and the frame waits in
@@ -386,10 +391,10 @@ class Radio {
   std::array<TypeCounters, kMaxMessageTypes> totals_{};
   // Built-in and registered message types when the radio was built: the per-node counters' stride.
   std::size_t type_count_ = message_type_count();
-  double total_tx_j_ = 0.0;
+  sim::ExactSum total_tx_j_;  // exact: the same total whatever order the frames are added in
   // Energy by message type: transmit energy, and bytes heard by every hearer (receive energy
   // is linear in them).
-  std::array<double, kMaxMessageTypes> tx_j_by_type_{};
+  std::array<sim::ExactSum, kMaxMessageTypes> tx_j_by_type_{};
   mutable std::array<std::uint64_t, kMaxMessageTypes> heard_bytes_by_type_{};
   mutable std::uint64_t total_heard_bytes_ = 0;
   // E_rx is linear in bits, so a node's receive energy is E_elec·8·(bytes it heard).
@@ -487,7 +492,6 @@ class Radio {
   std::deque<Jittered> jittered_;  // deque: a frame stays put while handlers send new ones
   std::vector<std::uint32_t> free_jittered_;
   std::vector<NodeId> scratch_receivers_;
-  sim::Fingerprint traffic_;  // the per-transmission part of traffic_fingerprint()
   std::unique_ptr<ContendedMedium> contended_;  // levels collision and csma
   bool any_battery_ = false, failures_ = false;
   LinkFaults link_faults_;

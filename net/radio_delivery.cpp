@@ -44,8 +44,10 @@ void Radio::deliver(sim::Time arrival, const Outgoing& out, sim::Time sent_at, P
     const double u =
         sim::keyed_uniform01(seed_, kJitterPurpose, nodes_[out.source_index].random_key,
                              nodes_[sim::index(id)].random_key, out.frame_number);
-    simulator_.at(arrival + sim::seconds(u * params_.jitter_s),
-                  [this, index, id] { deliver_jittered(index, id); });
+    // Each reception is the receiver's event: its time belongs to the receiver's fingerprint
+    // stream, kept where the receiver is (in the scheduling order `at`).
+    simulator_.at_for(sim::origin_of(id), arrival + sim::seconds(u * params_.jitter_s),
+                      [this, index, id] { deliver_jittered(index, id); });
   }
 }
 
@@ -53,15 +55,16 @@ void Radio::hand_over(const Frame& frame, NodeId receiver) {
   // Died while the frame was in the air (only batteries and faults kill; skip the lookup
   // otherwise).
   if (guarded() && !nodes_[sim::index(receiver)].alive) {
-    traffic_.mix((std::uint64_t{sim::index(frame.source)} << 32) | sim::index(receiver));
-    traffic_.mix(kUndeliveredMark ^ frame.number);
+    sim::Fingerprint& traffic = senders_[sim::index(receiver)].traffic;
+    traffic.mix((std::uint64_t{sim::index(frame.source)} << 32) | sim::index(receiver));
+    traffic.mix(kUndeliveredMark ^ frame.number);
     return;
   }
   // What the receiver's handler schedules is its own (the kernel's origin order; only then:
   // a store into the simulator on every reception cost the scheduling order 2 %).
   if (simulator_.ties_by_origin()) [[unlikely]]
     simulator_.act_as(sim::origin_of(receiver));
-  sim::Fingerprint& fp = simulator_.fingerprint();
+  sim::Fingerprint& fp = simulator_.fingerprint_stream();
   fp.mix((std::uint64_t{sim::index(frame.source)} << 32) | sim::index(receiver));
   fp.mix((std::uint64_t{static_cast<std::uint8_t>(frame.type)} << 32) | frame.size_bytes);
   if (listener_) listener_->on_frame(receiver, frame);

@@ -144,16 +144,20 @@ NodeRadioStats Radio::stats(NodeId node) {
 sim::Fingerprint Radio::traffic_fingerprint() {
   if (index_dirty_) prepare_index();
   materialize();
-  // The per-frame words are mixed in send order as frames go (see transmit). The overhearing of
-  // bulk unicasts, booked in any order and maybe on the second thread, enters here as the
-  // folded per-node sums, in id order: the value does not depend on who booked them.
-  sim::Fingerprint fp = traffic_;
+  // Each node's per-frame words are mixed in its send order as frames go (see transmit). The
+  // overhearing of bulk unicasts, booked in any order and maybe on the second thread, enters
+  // here as the folded per-node sums, in id order: the value does not depend on who booked them.
+  sim::Fingerprint fp;
   const std::size_t n_nodes = nodes_.size();
   const std::size_t tx_stride = tx_.size() / type_count_;
   const std::size_t rx_stride = heard_bytes_.size();
   for (std::size_t n = 0; n < n_nodes; ++n) {
     const Node& node = nodes_[n];
     const std::uint32_t hot = hot_[n];
+    if (!senders_[n].traffic.untouched()) {
+      fp.mix(std::uint64_t{n});
+      fp.mix(senders_[n].traffic.value());
+    }
     fp.mix(heard_bytes_[hot]);
     fp.mix(overheard_count_[hot]);
     fp.mix(node.lost_count);

@@ -1,11 +1,15 @@
 #pragma once
 // A running hash of the ordered stream of executed events and the payload digests models
 // add while handling them. Two runs with the same fingerprint executed the same events at
-// the same times in the same order with the same digested payloads.
+// the same times in the same order with the same digested payloads. In the origin order each
+// origin keeps its own stream, combined in origin order at the end, so that the parts of a
+// partitioned run can each keep the streams of their own nodes
+// (docs/time-and-ordering.md).
 #include <bit>
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <vector>
 
 namespace masnet::sim {
 
@@ -28,9 +32,25 @@ class Fingerprint {
   std::uint64_t value() const { return state_; }
   /// 16 lowercase hex digits, as written to summary.json.
   std::string hex() const;
+  /// Nothing mixed in yet (or, once in 2^64, back at the start).
+  bool untouched() const { return state_ == kBasis; }
 
  private:
-  std::uint64_t state_ = 0xCBF29CE484222325ULL;
+  static constexpr std::uint64_t kBasis = 0xCBF29CE484222325ULL;
+  std::uint64_t state_ = kBasis;
 };
+
+/// One fingerprint of per-origin streams (index = origin): each touched stream's origin and
+/// value in origin order. Where the streams were computed — in one run or spread over the parts
+/// of a partitioned one — does not matter, only what each origin's stream holds.
+inline Fingerprint combine_origin_streams(const std::vector<Fingerprint>& by_origin) {
+  Fingerprint combined;
+  for (std::size_t origin = 0; origin < by_origin.size(); ++origin) {
+    if (by_origin[origin].untouched()) continue;
+    combined.mix(static_cast<std::uint64_t>(origin));
+    combined.mix(by_origin[origin].value());
+  }
+  return combined;
+}
 
 }  // namespace masnet::sim

@@ -60,7 +60,7 @@ class Simulator {
   EventKey next_key(Time when);
   /// The key `next_key(when)` would return, without using it up.
   EventKey peek_key(Time when) const {
-    const std::uint32_t count = origin_ < counts_.size() ? counts_[origin_] : 0;
+    const std::uint32_t count = origin_ < origins_.size() ? origins_[origin_].count : 0;
     return EventKey{when == now_ ? running_.depth + 1 : 0u, origin_, count};
   }
   /// An event that does the work of several — a delivery batch, one frame after another —
@@ -73,6 +73,9 @@ class Simulator {
   /// follows `key`. Precondition: origin order, key not below the running key (asserted).
   void continue_as(const EventKey& key) {
     MASNET_ASSERT(!(key < running_), "an event's parts continue in key order");
+    // Each part counts in the fingerprint as the event it stands for: its time, in its origin's
+    // stream (the first part is the event itself, which the kernel counted).
+    if (key != running_) origin(key.origin).stream.mix(static_cast<std::uint64_t>(to_ns(now_)));
     running_ = key;
   }
   /// Schedules `action` at `when` with a key made by `next_key` (here or in another partition),
@@ -81,6 +84,7 @@ class Simulator {
   EventId at_keyed(Time when, EventKey key, std::uint32_t owner, F&& action) {
     MASNET_ASSERT(when >= now_, "event scheduled before the current time");
     MASNET_ASSERT(queue_.ties_by_origin(), "a keyed event needs the origin order");
+    reach(owner);  // the run loop mixes the event's time into its owner's stream unchecked
     return queue_.push(to_ns(when), EventAction::make(std::forward<F>(action)),
                        OriginTag{key, owner});
   }
@@ -111,6 +115,7 @@ class Simulator {
   EventId at_instant_end(std::uint32_t owner, Time when, F&& action) {
     if (!queue_.ties_by_origin()) return at(when, std::forward<F>(action));
     MASNET_ASSERT(when >= now_, "event scheduled before the current time");
+    reach(owner);
     return queue_.push(to_ns(when), EventAction::make(std::forward<F>(action)),
                        OriginTag{EventKey{kInstantEndDepth, owner, kReservedCount}, owner});
   }
@@ -139,10 +144,20 @@ class Simulator {
   std::uint64_t last_sequence() const { return queue_.last_sequence(); }
   std::size_t pending() const { return queue_.size() - cancelled_pending_; }
 
-  /// The fingerprint of everything executed so far. Models mix payload digests into it
-  /// while handling an event (e.g. the radio mixes each delivered frame's header).
-  Fingerprint& fingerprint() { return fingerprint_; }
-  const Fingerprint& fingerprint() const { return fingerprint_; }
+  /// The fingerprint of everything executed so far. In the origin order it combines one stream
+  /// per origin (`combine_origin_streams`): each event's time goes into its owner's stream and
+  /// what a model mixes goes into the acting origin's, so a node's stream is the same in a part
+  /// of a partitioned run that holds the node as in the whole run.
+  Fingerprint fingerprint() const {
+    return queue_.ties_by_origin() ? combine_origin_streams(origin_streams()) : fingerprint_;
+  }
+  /// The stream models mix payload digests into while handling an event (e.g. the radio mixes
+  /// each delivered frame's header): the acting origin's in the origin order.
+  Fingerprint& fingerprint_stream() {
+    return queue_.ties_by_origin() ? origin(origin_).stream : fingerprint_;
+  }
+  /// The origin order's streams by origin (untouched ones for origins that never ran).
+  std::vector<Fingerprint> origin_streams() const;
 
   /// Calls `hook(now, events_run)` after every `every_events`-th event run (counted across
   /// run/run_until calls), e.g. to redraw a progress line while a long chunk runs. A generic
@@ -170,10 +185,23 @@ class Simulator {
   std::uint64_t hook_countdown_ = kNoHook;  // events until the next call
   EventQueue queue_;
   Fingerprint fingerprint_;
-  // The origin order: who acts now, the running event's key, each origin's count.
+  // The origin order: who acts now, the running event's key, each origin's count and
+  // fingerprint stream (side by side: a node that acts touches both).
+  struct OriginState {
+    Fingerprint stream;
+    std::uint32_t count = 0;
+  };
+  OriginState& origin(std::uint32_t o) {
+    reach(o);
+    return origins_[o];
+  }
+  void reach(std::uint32_t o) {
+    if (o >= origins_.size()) [[unlikely]]
+      origins_.resize(std::size_t{o} + 1);
+  }
   std::uint32_t origin_ = 0;
   EventKey running_;
-  std::vector<std::uint32_t> counts_;
+  std::vector<OriginState> origins_;
 };
 
 }  // namespace masnet::sim

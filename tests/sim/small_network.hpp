@@ -89,6 +89,7 @@ struct Part {
     if (sim.acting_origin() != origin(node)) ++wrong_owner;
     std::uint64_t& s = state[node];
     s = mix(s, value);
+    sim.fingerprint_stream().mix(s);  // into this node's stream, as a model digests a payload
     log.push_back(Executed{to_ns(sim.now()), sim.running_key(), node, s});
     // One successor per event (the population stays constant): a message, or a timer of the
     // node's own, often for the same instant.
@@ -152,6 +153,18 @@ struct Parts {
         if (p->holds(e.node)) merged.push_back(e);
     std::sort(merged.begin(), merged.end(), in_total_order);
     return merged;
+  }
+  // The run's fingerprint from each node's stream in the part that holds it (the world's, the
+  // same in every part, from the first).
+  std::uint64_t merged_fingerprint() const {
+    std::vector<Fingerprint> streams(kNodes + 1);
+    streams[0] = all.front()->sim.origin_streams().at(0);
+    for (const Part* p : all) {
+      const std::vector<Fingerprint> own = p->sim.origin_streams();
+      for (std::uint32_t n = p->first; n < p->last; ++n)
+        if (Part::origin(n) < own.size()) streams[Part::origin(n)] = own[Part::origin(n)];
+    }
+    return combine_origin_streams(streams).value();
   }
 };
 

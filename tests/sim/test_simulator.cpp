@@ -131,6 +131,36 @@ TEST_CASE("the fingerprint depends on the times and order of executed events", "
   CHECK(run({1, 2, 3}) != run({1, 2}));
 }
 
+TEST_CASE("in the origin order the fingerprint combines one stream per origin", "[sim]") {
+  // Origin 1's events and digests, with or without origin 2's around them: origin 1's stream is
+  // the same, which lets a part of a partitioned run keep its own nodes' streams alone.
+  auto run = [](bool with_second, std::uint64_t digest) {
+    Simulator sim;
+    sim.order_ties_by_origin();
+    sim.act_as(1);
+    for (double t : {1.0, 2.0, 2.0})
+      sim.at(time_at(t), [&sim, digest] { sim.fingerprint_stream().mix(digest); });
+    if (with_second) {
+      sim.act_as(2);
+      for (double t : {0.5, 2.0})
+        sim.at(time_at(t), [&sim] { sim.fingerprint_stream().mix(std::uint64_t{99}); });
+    }
+    sim.act_as(0);
+    sim.run();
+    return std::pair{sim.fingerprint().value(), sim.origin_streams()};
+  };
+  const auto [both, both_streams] = run(true, 5);
+  const auto [alone, alone_streams] = run(false, 5);
+  REQUIRE(both_streams.size() == 3);
+  REQUIRE(alone_streams.size() == 2);
+  CHECK(both_streams[1].value() == alone_streams[1].value());
+  CHECK(both_streams[0].untouched());  // the world ran nothing
+  CHECK(both == combine_origin_streams(both_streams).value());
+  CHECK(both != alone);
+  // A stream sees its origin's digests and times.
+  CHECK(run(false, 6).second[1].value() != alone_streams[1].value());
+}
+
 TEST_CASE("many interleaved schedules and cancels keep the heap order", "[sim]") {
   Simulator sim;
   RandomStream rng(7);

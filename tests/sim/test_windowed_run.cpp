@@ -16,6 +16,7 @@ namespace {
 
 struct Outcome {
   std::vector<Executed> merged;
+  std::uint64_t fingerprint = 0;  // from each node's stream in its home part
   std::uint64_t windows = 0;
   unsigned threads = 0;
   bool clocks_at_end = true;
@@ -56,6 +57,7 @@ Outcome run_in_parts(const std::vector<std::uint32_t>& cuts, unsigned threads, T
     out.wrong_owner += p->wrong_owner;
   }
   out.merged = cut.merged_log();
+  out.fingerprint = cut.merged_fingerprint();
   // A node run by every part: each part's record of it is the same.
   if (watch.everywhere)
     for (const Part* p : parts) {
@@ -68,11 +70,16 @@ Outcome run_in_parts(const std::vector<std::uint32_t>& cuts, unsigned threads, T
   return out;
 }
 
-std::vector<Executed> run_whole(Time end, Watch watch = {}) {
+struct Whole {
+  std::vector<Executed> log;
+  std::uint64_t fingerprint = 0;
+};
+
+Whole run_whole(Time end, Watch watch = {}) {
   Part whole(0, kNodes, watch);
   whole.start();
   whole.sim.run_until(end);
-  return whole.log;
+  return {whole.log, whole.sim.fingerprint().value()};
 }
 
 }  // namespace
@@ -80,8 +87,8 @@ std::vector<Executed> run_whole(Time end, Watch watch = {}) {
 TEST_CASE("a windowed run on 1, 2 or 3 threads gives the run in one piece, event for event",
           "[sim]") {
   const Time end = time_at(0.01);
-  const std::vector<Executed> whole = run_whole(end);
-  REQUIRE(whole.size() > 1000);
+  const Whole whole = run_whole(end);
+  REQUIRE(whole.log.size() > 1000);
   for (const std::vector<std::uint32_t>& cuts :
        {std::vector<std::uint32_t>{0, 5, kNodes}, std::vector<std::uint32_t>{0, 3, 7, kNodes},
         std::vector<std::uint32_t>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, kNodes}}) {
@@ -89,7 +96,9 @@ TEST_CASE("a windowed run on 1, 2 or 3 threads gives the run in one piece, event
       const Outcome o = run_in_parts(cuts, threads, end);
       INFO("parts: " << cuts.size() - 1 << ", threads: " << threads);
       CHECK(o.threads == std::min<unsigned>(threads, static_cast<unsigned>(cuts.size() - 1)));
-      CHECK(o.merged == whole);
+      CHECK(o.merged == whole.log);
+      // The fingerprint too: each node's stream is the same in its home part.
+      CHECK(o.fingerprint == whole.fingerprint);
       CHECK(o.clocks_at_end);
       CHECK(o.wrong_owner == 0);
       CHECK(o.too_early == 0);  // the lookahead holds
@@ -127,16 +136,17 @@ TEST_CASE(
   // each one's messages reaching every part (docs/decisions/0012-partitioned-runs.md).
   const Time end = time_at(0.01);
   for (std::uint32_t watched : {0u, 4u, kNodes - 1}) {
-    const std::vector<Executed> whole = run_whole(end, Watch{watched, false});
-    REQUIRE(whole.size() > 1000);
-    const std::vector<Executed> whole_watched = events_of(whole, watched);
+    const Whole whole = run_whole(end, Watch{watched, false});
+    REQUIRE(whole.log.size() > 1000);
+    const std::vector<Executed> whole_watched = events_of(whole.log, watched);
     REQUIRE(whole_watched.size() > 50);
     for (const std::vector<std::uint32_t>& cuts :
          {std::vector<std::uint32_t>{0, 5, kNodes}, std::vector<std::uint32_t>{0, 3, 7, kNodes}}) {
       for (unsigned threads : {1u, 2u}) {
         const Outcome o = run_in_parts(cuts, threads, end, Watch{watched, true});
         INFO("watched: " << watched << ", parts: " << cuts.size() - 1 << ", threads: " << threads);
-        CHECK(o.merged == whole);
+        CHECK(o.merged == whole.log);
+        CHECK(o.fingerprint == whole.fingerprint);
         CHECK(o.watched == whole_watched);
         CHECK(o.replicas_agree);
         CHECK(o.wrong_owner == 0);
@@ -154,10 +164,13 @@ TEST_CASE(
   // with no lookahead.
   const Time end = time_at(0.01);
   const Watch watch{4, false};
-  const std::vector<Executed> whole = run_whole(end, watch);
+  const Whole whole = run_whole(end, watch);
   const Outcome o = run_in_parts({0, 5, kNodes}, 1, end, watch);
-  CHECK(o.merged.size() == whole.size());  // the same events ...
-  CHECK(o.merged != whole);                // ... carrying other values
+  CHECK(o.merged.size() == whole.log.size());  // the same events ...
+  CHECK(o.merged != whole.log);                // ... carrying other values
+  CHECK(o.fingerprint != whole.fingerprint);   // which the fingerprint sees
   // Without the read the same cut is exact: the difference is the read's alone.
-  CHECK(run_in_parts({0, 5, kNodes}, 1, end).merged == run_whole(end));
+  const Outcome exact = run_in_parts({0, 5, kNodes}, 1, end);
+  CHECK(exact.merged == run_whole(end).log);
+  CHECK(exact.fingerprint == run_whole(end).fingerprint);
 }
