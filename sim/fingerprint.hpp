@@ -27,6 +27,13 @@ inline std::uint64_t bits_of(double x) {
 
 class Fingerprint {
  public:
+  Fingerprint() = default;
+  /// A stream continued from its value (carried from another process of a partitioned run).
+  static Fingerprint resumed(std::uint64_t value) {
+    Fingerprint f;
+    f.state_ = value;
+    return f;
+  }
   void mix(std::uint64_t word) { state_ = mix_word(state_, word); }
   void mix(double x) { mix(bits_of(x)); }
   std::uint64_t value() const { return state_; }

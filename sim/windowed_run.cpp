@@ -64,11 +64,13 @@ void WindowedRun::work(unsigned thread) {
   }
 }
 
-void WindowedRun::run_until(Time end, const std::function<void(Time window_end)>& exchange) {
+void WindowedRun::run_until(Time end, const std::function<void(Time window_end)>& exchange,
+                            const std::function<Time(Time earliest_here)>& agree) {
   for (;;) {
     Time earliest = kTimeMax;
     for (const Simulator* part : parts_)
       earliest = std::min(earliest, part->next_time());
+    if (agree) earliest = agree(earliest);
     if (earliest > end) break;
     // Nothing sent in [earliest, earliest + lookahead) arrives before the window's end.
     window_end_ = std::min(end, earliest + lookahead_ - Duration{1});

@@ -32,7 +32,11 @@ class WindowedRun {
   /// ends at `window_end`, calls `exchange(window_end)`; what it schedules into the parts must
   /// be later than `window_end`. A window starts at the earliest pending event of any part, so
   /// stretches with nothing to do cost nothing.
-  void run_until(Time end, const std::function<void(Time window_end)>& exchange);
+  /// `agree`, when given, turns this process's earliest pending time into the earliest of every
+  /// process running parts of the same run (a minimum over MPI ranks, ranks/rank_exchange.hpp):
+  /// all of them then run the same windows.
+  void run_until(Time end, const std::function<void(Time window_end)>& exchange,
+                 const std::function<Time(Time earliest_here)>& agree = {});
 
   std::uint64_t windows() const { return windows_; }
   unsigned threads() const { return threads_; }

@@ -7,7 +7,7 @@
 set -u
 cd "$(dirname "$0")/.."
 status=0
-for header in sim/*.hpp net/*.hpp protocols/*.hpp agents/*.hpp $(find scenarios -name '*.hpp' | sort); do
+for header in sim/*.hpp ranks/*.hpp net/*.hpp protocols/*.hpp agents/*.hpp $(find scenarios -name '*.hpp' | sort); do
   if ! grep -q "$(basename "$header")" docs/architecture.md; then
     echo "docs/architecture.md does not name $header"
     status=1
