@@ -12,19 +12,11 @@
 #include "bench_args.hpp"
 #include "ranks/rank_exchange.hpp"
 #include "sim/windowed_run.hpp"
+#include "ticker.hpp"
 
 using namespace masnet;
 
-namespace {
-
-struct Ticker {
-  sim::Simulator sim;
-  void tick() {
-    sim.after(sim::Duration{1000}, [this] { tick(); });
-  }
-};
-
-}  // namespace
+using bench::Ticker;
 
 int main(int argc, char** argv) {
   MPI_Init(&argc, &argv);
