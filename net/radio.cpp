@@ -221,6 +221,12 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   src.energy_tx_j += tx_j;
   total_tx_j_.add(tx_j);
   tx_j_by_type_[static_cast<std::size_t>(type)].add(tx_j);
+  // A tile's static senders are its own share; the mobile ones are every tile's.
+  const bool shipped = tiled_ && hot_[source_index] < static_ids_.size();
+  if (shipped) [[unlikely]] {
+    static_tx_j_.add(tx_j);
+    static_tx_j_by_type_[static_cast<std::size_t>(type)].add(tx_j);
+  }
   if (battery && params_.energy.idle_power_w > 0) schedule_depletion(source);
   const auto type_index = static_cast<std::size_t>(type);
   MASNET_ASSERT(type_index < type_count_, "a message type registered after the radio was built");
@@ -249,20 +255,38 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   const Heard heard = link_faults_.any() ? hear<true>(out) : hear<false>(out);
   ++sent.count;
   sent.bytes += bytes;
-  totals_[type_index].rx_count += heard.received;
-  totals_[type_index].rx_bytes += heard.received * bytes;
-  total_heard_bytes_ += heard.hearers * bytes;
-  heard_bytes_by_type_[type_index] += heard.hearers * bytes;
-  // What this frame did, in its sender's send order. Its overhearers are not here: the second
-  // thread may be counting them still; they enter the traffic fingerprint as per-node sums.
+  book_heard(type_index, bytes, heard);
+  // What this frame was, in its sender's send order. Who heard it is not here: its hearers may
+  // be booked elsewhere (the second thread, other tiles); they enter the traffic fingerprint as
+  // per-node sums.
   src.traffic.mix(static_cast<std::uint64_t>(sim::to_ns(now)));
   src.traffic.mix((std::uint64_t{sim::index(source)} << 32) | sim::index(destination));
   src.traffic.mix((std::uint64_t{static_cast<std::uint8_t>(type)} << 32) | bytes);
-  src.traffic.mix((heard.received << 32) ^ heard.lost);
+  if (shipped) [[unlikely]] {
+    // The other tiles' nodes get it from the record, with the key its delivery takes here.
+    const sim::EventKey key = simulator_.next_key(arrival);
+    outbox_.push_back(FrameRecord{now, arrival, key, source, destination, range,
+                                  destination_distance, frame_number,
+                                  static_cast<std::uint32_t>(type_index), bytes,
+                                  heard.destination_reached, record_mobiles_, payload});
+    if (!scratch_receivers_.empty()) deliver(arrival, out, now, std::move(payload), &key);
+    return true;
+  }
   // Delivery: the receivers get it at its arrival.
   if (scratch_receivers_.empty()) return true;
   deliver(arrival, out, now, std::move(payload));
   return true;
+}
+
+void Radio::book_heard(std::size_t type_index, std::uint32_t bytes, const Heard& heard) {
+  totals_[type_index].rx_count += heard.received;
+  totals_[type_index].rx_bytes += heard.received * bytes;
+  total_heard_bytes_ += heard.hearers * bytes;
+  heard_bytes_by_type_[type_index] += heard.hearers * bytes;
+  if (tiled_) [[unlikely]] {
+    static_heard_bytes_ += heard.static_hearers * bytes;
+    static_heard_by_type_[type_index] += heard.static_hearers * bytes;
+  }
 }
 
 }  // namespace masnet::net

@@ -20,6 +20,7 @@
 
 #include "net/csma.hpp"
 #include "net/energy.hpp"
+#include "net/frame_record.hpp"
 #include "net/line_index.hpp"
 #include "net/link_faults.hpp"
 #include "net/messages.hpp"
@@ -217,6 +218,23 @@ class Radio {
   /// what nobody handled (docs/radio-and-energy.md). The same with or without the second thread.
   sim::Fingerprint traffic_fingerprint();
 
+  // ---- Tiles of a partitioned run (net/radio_tiles.cpp, docs/decisions/0012) -----------------
+  /// Makes this radio one tile of a run cut by space: it books and delivers to the static nodes
+  /// in slots [first, end) of its index and to every mobile node (which every tile runs), and
+  /// puts each frame of its static senders into `outbox()` for the other tiles. Needs the
+  /// origin order, level ideal or airtime, no jitter, batteries or faults.
+  void own_static_slots(std::uint32_t first, std::uint32_t end);
+  /// Static nodes in slot order (rows of a sensor grid): tiles own contiguous slots.
+  const std::vector<NodeId>& static_slots();
+  bool owns(NodeId node) const;
+  std::vector<FrameRecord>& outbox() { return outbox_; }
+  /// Another tile's frame: books and delivers it to this tile's nodes. Precondition: its
+  /// arrival is not before now.
+  void inject(const FrameRecord& record);
+  /// Takes over `tile`'s static nodes (their ledger, counters and traffic) and its share of the
+  /// totals: after every tile has been absorbed, this radio reads as the whole run's.
+  void absorb_tile(Radio& tile);
+
  private:
   friend class ContendedMedium;
   static constexpr std::uint32_t kNoHotIndex = 0xFFFFFFFFu;
@@ -303,20 +321,26 @@ class Radio {
   };
   struct Heard {
     std::uint64_t hearers = 0, received = 0, lost = 0;
+    std::uint64_t static_hearers = 0;  // of `hearers`
+    bool destination_reached = false;
   };
   /// Every node in range pays for the frame; the receivers that want its type are gathered in
   /// scratch_receivers_ (net/radio_reception.cpp).
   /// `kLinkFaults`: partitions or degraded areas are in force (a separate instantiation, so that
   /// runs without them never test for them per hearer).
+  /// `remote`: another tile's frame, whose mobile hearers it names.
   template <bool kLinkFaults>
-  Heard hear(const Outgoing& out);
+  Heard hear(const Outgoing& out, const FrameRecord* remote = nullptr);
+  void book_heard(std::size_t type_index, std::uint32_t bytes, const Heard& heard);
   /// A partition stands between `from` and `to` / the loss there with degraded areas (out of
   /// line: only runs with link faults in force ask).
   [[gnu::noinline]] bool link_cut(const Vec2& from, NodeId to) const;
   [[gnu::noinline]] double link_loss(const Vec2& from, NodeId to) const;
   /// Hands the frame to scratch_receivers_ at `arrival` (net/radio_delivery.cpp). Its parts,
   /// not a Frame: it is built in place where it waits (see Batch).
-  void deliver(sim::Time arrival, const Outgoing& out, sim::Time sent_at, Payload&& payload);
+  /// `key`: the delivery's key when made already (tiles).
+  void deliver(sim::Time arrival, const Outgoing& out, sim::Time sent_at, Payload&& payload,
+               const sim::EventKey* key = nullptr);
   void prepare_index();
   /// Folds the bulk (run-length) bookings into the per-node counters.
   void materialize() const;
@@ -366,9 +390,9 @@ class Radio {
   void mix_refusal(NodeId source);
   void hand_over(const Frame& frame, NodeId receiver);
   /// The batch that delivers at `arrival` (see `open_batch_`), scheduled if new.
-  Batch& batch_for(sim::Time arrival);
+  Batch& batch_for(sim::Time arrival, const sim::EventKey* key);
   /// The same in the kernel's origin order (out of line: the scheduling order never pays).
-  [[gnu::noinline]] Batch& batch_by_origin(sim::Time arrival, bool open);
+  [[gnu::noinline]] Batch& batch_by_origin(sim::Time arrival, bool open, const sim::EventKey* key);
   template <bool kByOrigin>
   void run_batch(std::uint32_t batch);
   static void prefetch_delivery(const Delivery& delivery);
@@ -495,6 +519,19 @@ class Radio {
   std::unique_ptr<ContendedMedium> contended_;  // levels collision and csma
   bool any_battery_ = false, failures_ = false;
   LinkFaults link_faults_;
+  // A tile: its static slots, its frames for the others, and its share of the totals that the
+  // tile absorbing it adds (the mobile nodes' share is the same in every tile).
+  bool tiled_ = false;
+  std::uint32_t owned_first_ = 0, owned_end_ = 0xFFFFFFFFu;
+  bool owned_slot(std::uint32_t hot) const {
+    return hot >= owned_first_ && hot < owned_end_;
+  }
+  std::vector<FrameRecord> outbox_;
+  std::vector<NodeId> record_mobiles_;
+  sim::ExactSum static_tx_j_;
+  std::array<sim::ExactSum, kMaxMessageTypes> static_tx_j_by_type_{};
+  std::uint64_t static_heard_bytes_ = 0;
+  std::array<std::uint64_t, kMaxMessageTypes> static_heard_by_type_{};
 };
 
 template <class Visit>

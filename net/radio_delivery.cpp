@@ -13,7 +13,8 @@ namespace {
 constexpr std::uint64_t kJitterPurpose = sim::purpose("radio.jitter");
 }  // namespace
 
-void Radio::deliver(sim::Time arrival, const Outgoing& out, sim::Time sent_at, Payload&& payload) {
+void Radio::deliver(sim::Time arrival, const Outgoing& out, sim::Time sent_at, Payload&& payload,
+                    const sim::EventKey* key) {
   const auto type = static_cast<MessageType>(out.type_index);
   std::vector<NodeId>& receivers = scratch_receivers_;
   // Delivery order is by node id, whatever the grid's layout.
@@ -24,7 +25,7 @@ void Radio::deliver(sim::Time arrival, const Outgoing& out, sim::Time sent_at, P
   if (params_.jitter_s <= 0) {
     // One event delivers to every receiver in id order: the same order separate events with
     // consecutive sequence numbers would give, at a fraction of the cost.
-    Batch& batch = batch_for(arrival);
+    Batch& batch = batch_for(arrival, key);
     const auto count = static_cast<std::uint32_t>(receivers.size());
     const bool one = count == 1;
     batch.deliveries.push_back(Delivery{
@@ -70,10 +71,10 @@ void Radio::hand_over(const Frame& frame, NodeId receiver) {
   if (listener_) listener_->on_frame(receiver, frame);
 }
 
-Radio::Batch& Radio::batch_for(sim::Time arrival) {
+Radio::Batch& Radio::batch_for(sim::Time arrival, const sim::EventKey* key) {
   const bool open = open_batch_ != 0xFFFFFFFFu && open_batch_time_ == arrival;
   if (simulator_.ties_by_origin()) [[unlikely]]
-    return batch_by_origin(arrival, open);
+    return batch_by_origin(arrival, open, key);
   // A separate event would have run right after the batch if nothing was scheduled since.
   if (open && simulator_.last_sequence() == open_batch_sequence_) return batches_[open_batch_];
   const std::uint32_t batch = sim::reuse_or_append(free_batches_, batches_);
@@ -84,11 +85,12 @@ Radio::Batch& Radio::batch_for(sim::Time arrival) {
   return batches_[batch];
 }
 
-Radio::Batch& Radio::batch_by_origin(sim::Time arrival, bool open) {
-  // The frame takes the key its own event would have had. It joins the open batch if that key
-  // comes after the batch's last: the batch then hands the frames over in key order, each as
-  // its own event would have run (run_batch<true> lets other events of the instant run between).
-  const sim::EventKey key = simulator_.next_key(arrival);
+Radio::Batch& Radio::batch_by_origin(sim::Time arrival, bool open, const sim::EventKey* made) {
+  // The frame takes the key its own event would have had (made by its sender's tile when it
+  // crossed from another). It joins the open batch if that key comes after the batch's last: the
+  // batch then hands the frames over in key order, each as its own event would have run
+  // (run_batch<true> lets other events of the instant run between).
+  const sim::EventKey key = made != nullptr ? *made : simulator_.next_key(arrival);
   if (open && batches_[open_batch_].keys.back() < key) {
     batches_[open_batch_].keys.push_back(key);
     return batches_[open_batch_];
@@ -96,8 +98,7 @@ Radio::Batch& Radio::batch_by_origin(sim::Time arrival, bool open) {
   const std::uint32_t batch = sim::reuse_or_append(free_batches_, batches_);
   batches_[batch].keys.push_back(key);
   // It runs as its first frame's sender; hand_over acts as each receiver.
-  simulator_.at_keyed(arrival, key, simulator_.acting_origin(),
-                      [this, batch] { run_batch<true>(batch); });
+  simulator_.at_keyed(arrival, key, key.origin, [this, batch] { run_batch<true>(batch); });
   open_batch_ = batch;
   open_batch_time_ = arrival;
   return batches_[batch];

@@ -21,21 +21,35 @@ constexpr std::uint64_t kLossPurpose = sim::purpose("radio.loss");
   const Vec2 center{job.cx, job.cy};
   // Overhearing is one packed word per run end, each prefetched with the line's estimate. The
   // lambdas capture no references, so nothing is reloaded after each write.
-  std::uint64_t hearers = line_index_.for_each_run_within(
-      center, job.range,
-      [heard_diff, booking](std::uint32_t a, std::uint32_t c) {
-        heard_diff[a] += booking;
-        heard_diff[c] -= booking;
-      },
-      [heard_diff](std::uint32_t a, std::uint32_t c) {
-        __builtin_prefetch(heard_diff + a, 1);
-        __builtin_prefetch(heard_diff + c, 1);
-      });
+  std::uint64_t hearers = 0;
+  if (tiled_) [[unlikely]] {
+    // A tile books its own slots only: each run cut to them.
+    const std::uint32_t first = owned_first_, end = owned_end_;
+    line_index_.for_each_run_within(center, job.range, [&](std::uint32_t a, std::uint32_t c) {
+      a = std::max(a, first);
+      c = std::min(c, end);
+      if (a >= c) return;
+      heard_diff[a] += booking;
+      heard_diff[c] -= booking;
+      hearers += c - a;
+    });
+  } else {
+    hearers = line_index_.for_each_run_within(
+        center, job.range,
+        [heard_diff, booking](std::uint32_t a, std::uint32_t c) {
+          heard_diff[a] += booking;
+          heard_diff[c] -= booking;
+        },
+        [heard_diff](std::uint32_t a, std::uint32_t c) {
+          __builtin_prefetch(heard_diff + a, 1);
+          __builtin_prefetch(heard_diff + c, 1);
+        });
+  }
   // The runs included the sender (at the center: in every run of a valid range) and maybe a
   // static addressee: take them out again, as runs of one slot in the words just written.
   const auto static_count = static_cast<std::uint32_t>(static_ids_.size());
   for (const std::uint32_t hot : {job.source_hot, job.destination_hot}) {
-    if (hot >= static_count ||
+    if (hot >= static_count || !owned_slot(hot) ||
         !(hot == job.source_hot ? job.range >= 0.0 : line_index_.within(hot, center, job.range)))
       continue;
     heard_diff[hot] -= booking;
@@ -119,7 +133,7 @@ double Radio::link_loss(const Vec2& from, NodeId to) const {
 }
 
 template <bool kLinkFaults>
-Radio::Heard Radio::hear(const Outgoing& out) {
+Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
   const NodeId source = out.source, destination = out.destination;
   const std::size_t source_index = out.source_index, type_index = out.type_index;
   const std::uint32_t bytes = out.bytes;
@@ -127,6 +141,7 @@ Radio::Heard Radio::hear(const Outgoing& out) {
   const std::uint64_t frame_number = out.frame_number;
   const bool battery = battery_limited();
   const bool guarded_nodes = guarded();
+  const bool tiled = tiled_;
   // Partitions and degraded areas in force: each reception is asked about (rare: faults only).
   constexpr bool links = kLinkFaults;
   const auto type = static_cast<MessageType>(type_index);
@@ -235,6 +250,11 @@ Radio::Heard Radio::hear(const Outgoing& out) {
       line_index_.for_each_run_within(
           center, range,
           [&](std::uint32_t a, std::uint32_t c) {
+            if (tiled) {  // a tile books its own slots only
+              a = std::max(a, owned_first_);
+              c = std::min(c, owned_end_);
+              if (a >= c) return;
+            }
             hearers += c - a;
             ++count_diff[a];
             --count_diff[c];
@@ -249,7 +269,7 @@ Radio::Heard Radio::hear(const Outgoing& out) {
           prefetch_both);
     } else {
       line_index_.for_each_run_within(center, range, [&](std::uint32_t a, std::uint32_t c) {
-        for (std::uint32_t k = a; k < c; ++k) {
+        for (std::uint32_t k = std::max(a, owned_first_); k < std::min(c, owned_end_); ++k) {
           if (k == source_hot || k == destination_hot) continue;
           if (is_broadcast)
             receive(slots[k], k);
@@ -263,7 +283,7 @@ Radio::Heard Radio::hear(const Outgoing& out) {
       // A broadcast's runs included its sender (a unicast's job books its own out): take it out
       // again, as a run of one slot in the difference words the runs just wrote. A static
       // sender sits at the center (distance exactly 0): in every run of a valid range.
-      if (is_broadcast && source_hot < static_count && range >= 0.0) {
+      if (is_broadcast && source_hot < static_count && owned_slot(source_hot) && range >= 0.0) {
         --hearers;
         --count_diff[source_hot];
         ++count_diff[source_hot + 1];
@@ -275,33 +295,65 @@ Radio::Heard Radio::hear(const Outgoing& out) {
   } else {
     const NodeId* const slots = static_grid_.ids().data();
     static_grid_.for_each_slot_within(center, range, [&](std::uint32_t k, double) {
-      if (k == source_hot || k == destination_hot) return;
+      if (k == source_hot || k == destination_hot || !owned_slot(k)) return;
       if (is_broadcast)
         receive(slots[k], k);
       else
         overhear(slots[k], k);
     });
   }
+  std::uint64_t static_hearers = hearers;
+  // A static addressee is booked after the mobile hearers, but is the tile's own share.
+  auto receive_destination = [&] {
+    const std::uint64_t before = hearers;
+    receive(destination, destination_hot);
+    if (destination_hot < static_count) static_hearers += hearers - before;
+  };
+  if (remote != nullptr) [[unlikely]] {
+    // Another tile's frame: the mobile nodes that heard it then, and its addressee if this tile
+    // holds it (the sender's tile counted an unreachable one).
+    for (const NodeId id : remote->mobile_hearers)
+      if (is_broadcast)
+        receive(id, hot_[sim::index(id)]);
+      else
+        overhear(id, hot_[sim::index(id)]);
+    if (!is_broadcast && remote->destination_reached && owns(destination)) receive_destination();
+    return Heard{hearers, received, lost, static_hearers, remote->destination_reached};
+  }
+  // A tile's static sender names the mobile hearers in its frame's record.
+  const bool record = tiled && source_hot < static_count;
+  if (record) record_mobiles_.clear();
+  bool reached = false;
   if (is_broadcast) {
     for_each_mobile_within(
-        center, range, [&](NodeId id) { receive(id, hot_[sim::index(id)]); }, source, sim::kNoNode);
+        center, range,
+        [&](NodeId id) {
+          if (record) record_mobiles_.push_back(id);
+          receive(id, hot_[sim::index(id)]);
+        },
+        source, sim::kNoNode);
   } else {
     for_each_mobile_within(
-        center, range, [&](NodeId id) { overhear(id, hot_[sim::index(id)]); }, source, destination,
-        destination_distance);
+        center, range,
+        [&](NodeId id) {
+          if (record) record_mobiles_.push_back(id);
+          overhear(id, hot_[sim::index(id)]);
+        },
+        source, destination, destination_distance);
     // The addressee is decided by its distance, not by the grid's rounding at the boundary.
     // The same arithmetic as unicast()'s distance, so the known value decides identically.
     const double distance = destination_distance >= 0.0 ? destination_distance
                                                         : (position(destination) - center).norm();
-    if (distance <= range)
-      receive(destination, destination_hot);
-    else
+    reached = distance <= range;
+    if (!reached)
       ++nodes_[source_index].unreachable_count;
+    else if (!tiled || owns(destination))
+      receive_destination();
   }
-  return Heard{hearers, received, lost};
+  return Heard{hearers, received, lost, static_hearers, reached};
 }
 
-template Radio::Heard Radio::hear<false>(const Outgoing& out);
-template Radio::Heard Radio::hear<true>(const Outgoing& out);
+template Radio::Heard Radio::hear<false>(const Outgoing& out, const FrameRecord* remote);
+template Radio::Heard Radio::hear<true>(const Outgoing& out, const FrameRecord* remote);
 
 }  // namespace masnet::net
