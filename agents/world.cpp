@@ -152,6 +152,13 @@ void World::start() {
       schedule(sensor_node(s), sensor_key(s));
 }
 
+void World::absorb_tile(World& tile) {
+  radio_.absorb_tile(tile.radio_);
+  absorbed_.readings += tile.sensor_readings();
+  absorbed_.point_in_cell_tests += tile.sensor_point_in_cell_tests();
+  absorbed_.clamped_readings += tile.clamped_readings();
+}
+
 std::uint32_t World::send(NodeId from, NodeId to, double range, net::Payload payload) {
   const std::uint32_t bytes = net::size_bytes(payload, radio_.params().sizes);
   const bool sent = to == sim::kNoNode ? radio_.broadcast(from, range, std::move(payload))

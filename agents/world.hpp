@@ -144,18 +144,30 @@ class World final : public net::RadioListener,
   protocols::RobotCell true_cell(std::size_t robot) override { return oracle_cell(robot); }
   /// Positions of the field's moving entities now (targets, bump centres).
   std::vector<Vec2> source_positions() const;
-  std::uint64_t clamped_readings() const { return field_.clamped_readings(); }
+  std::uint64_t clamped_readings() const {
+    return field_.clamped_readings() + absorbed_.clamped_readings;
+  }
   /// The pollution field (diffusion runs), or null.
   const DiffusionField* diffusion() const { return diffusion_.get(); }
   /// Σ of the sensors' noiseless readings now (the paper's Fig. 6 quantity).
   double pollution_total() const;
   /// Neutraliser a robot's dispenser has released so far (rate·s, applied to the field).
   double neutraliser_used(std::size_t robot) const { return neutraliser_used_[robot]; }
-  std::uint64_t sensor_readings() const { return readings_taken_; }
+  std::uint64_t sensor_readings() const { return readings_taken_ + absorbed_.readings; }
   /// Point-in-cell tests the sensors made answering SENSEs so far (their protocol's count).
   std::uint64_t sensor_point_in_cell_tests() const {
-    return sensor_protocol_->point_in_cell_tests();
+    return sensor_protocol_->point_in_cell_tests() + absorbed_.point_in_cell_tests;
   }
+
+  // ---- Tiles of a partitioned run (docs/decisions/0012-partitioned-runs.md) -----------------
+  /// This world is one tile: its radio's static slots [first, end) are its sensors; it runs them
+  /// and every robot. Before start().
+  void own_sensor_slots(std::uint32_t first, std::uint32_t end) {
+    radio_.own_static_slots(first, end);
+  }
+  /// Takes over another tile's sensors (their radio ledger and the sensors' counts): this world
+  /// then reads as the whole run's. At the end of the run.
+  void absorb_tile(World& tile);
 
   // ---- Robot groups (docs/formations.md): robot g leads group g --------------------------------
   /// Followers, group by group (follower f is slot f % (size − 1) of group f / (size − 1)); their
@@ -251,6 +263,9 @@ class World final : public net::RadioListener,
   /// The nodes fault `fault` kills, decided when it strikes.
   std::vector<NodeId> fault_victims(std::size_t fault);
   std::vector<std::vector<NodeId>> fault_victims_;  // [fault]: who it took down
+  struct Absorbed {                                 // the counts of the tiles this one absorbed
+    std::uint64_t readings = 0, point_in_cell_tests = 0, clamped_readings = 0;
+  } absorbed_;
 };
 
 }  // namespace masnet::agents

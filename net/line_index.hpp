@@ -278,7 +278,7 @@ class LineIndex {
 
   /// The first line with y >= value (the line count if none). Evenly spaced lines (a grid's
   /// rows) start from an O(1) estimate; the steps make it exact either way.
-  std::size_t first_line_at_or_above(double value) const {
+  [[gnu::always_inline]] std::size_t first_line_at_or_above(double value) const {
     const std::size_t count = lines_.size();
     std::size_t l;
     if (lines_even_) {

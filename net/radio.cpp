@@ -226,6 +226,8 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   if (shipped) [[unlikely]] {
     static_tx_j_.add(tx_j);
     static_tx_j_by_type_[static_cast<std::size_t>(type)].add(tx_j);
+    ++static_totals_[static_cast<std::size_t>(type)].tx_count;
+    static_totals_[static_cast<std::size_t>(type)].tx_bytes += bytes;
   }
   if (battery && params_.energy.idle_power_w > 0) schedule_depletion(source);
   const auto type_index = static_cast<std::size_t>(type);
@@ -252,7 +254,9 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   // gathered in scratch_receivers_.
   const Outgoing out{source, destination, source_index,         type_index,
                      bytes,  range,       destination_distance, frame_number};
-  const Heard heard = link_faults_.any() ? hear<true>(out) : hear<false>(out);
+  const Heard heard = shipped || tiled_    ? hear<false, true>(out)
+                      : link_faults_.any() ? hear<true, false>(out)
+                                           : hear<false, false>(out);
   ++sent.count;
   sent.bytes += bytes;
   book_heard(type_index, bytes, heard);
@@ -276,17 +280,6 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   if (scratch_receivers_.empty()) return true;
   deliver(arrival, out, now, std::move(payload));
   return true;
-}
-
-void Radio::book_heard(std::size_t type_index, std::uint32_t bytes, const Heard& heard) {
-  totals_[type_index].rx_count += heard.received;
-  totals_[type_index].rx_bytes += heard.received * bytes;
-  total_heard_bytes_ += heard.hearers * bytes;
-  heard_bytes_by_type_[type_index] += heard.hearers * bytes;
-  if (tiled_) [[unlikely]] {
-    static_heard_bytes_ += heard.static_hearers * bytes;
-    static_heard_by_type_[type_index] += heard.static_hearers * bytes;
-  }
 }
 
 }  // namespace masnet::net

@@ -162,26 +162,15 @@ class Radio {
   /// Frames `node` has transmitted so far, all types (cheap: no pending receptions are booked).
   std::uint64_t frames_sent(NodeId node) const;
   /// Frames by type over all nodes (tx: transmissions; rx: receptions by addressees).
-  const TypeCounters& totals(MessageType type) const {
-    return totals_[static_cast<std::size_t>(type)];
-  }
+  /// (With sibling tiles: their static nodes' shares added.)
+  TypeCounters totals(MessageType type) const;
   /// Radio energy booked so far over all nodes (idle drain excluded), joules.
-  double total_tx_energy_j() const { return total_tx_j_.value(); }
-  double total_rx_energy_j() const {
-    drain_overhearing();
-    return rx_energy_j(params_.energy, 8.0 * static_cast<double>(total_heard_bytes_));
-  }
+  double total_tx_energy_j() const;
+  double total_rx_energy_j() const;
   /// Radio energy of the frames of one type (and, under csma, of their acknowledgements):
   /// sending them, and every node hearing them, joules.
-  double type_tx_energy_j(MessageType type) const {
-    return tx_j_by_type_[static_cast<std::size_t>(type)].value();
-  }
-  double type_rx_energy_j(MessageType type) const {
-    drain_overhearing();
-    return net::rx_energy_j(
-        params_.energy,
-        8.0 * static_cast<double>(heard_bytes_by_type_[static_cast<std::size_t>(type)]));
-  }
+  double type_tx_energy_j(MessageType type) const;
+  double type_rx_energy_j(MessageType type) const;
   /// Per-node stats, idle energy brought up to now.
   NodeRadioStats stats(NodeId node);
   double energy_j(NodeId node) {
@@ -234,6 +223,8 @@ class Radio {
   /// Takes over `tile`'s static nodes (their ledger, counters and traffic) and its share of the
   /// totals: after every tile has been absorbed, this radio reads as the whole run's.
   void absorb_tile(Radio& tile);
+  /// Until then, the totals and energies above add these tiles' shares (read between windows).
+  void set_sibling_tiles(std::vector<const Radio*> siblings) { siblings_ = std::move(siblings); }
 
  private:
   friend class ContendedMedium;
@@ -321,7 +312,7 @@ class Radio {
   };
   struct Heard {
     std::uint64_t hearers = 0, received = 0, lost = 0;
-    std::uint64_t static_hearers = 0;  // of `hearers`
+    std::uint64_t static_hearers = 0, static_received = 0;  // of `hearers`, `received`
     bool destination_reached = false;
   };
   /// Every node in range pays for the frame; the receivers that want its type are gathered in
@@ -329,9 +320,22 @@ class Radio {
   /// `kLinkFaults`: partitions or degraded areas are in force (a separate instantiation, so that
   /// runs without them never test for them per hearer).
   /// `remote`: another tile's frame, whose mobile hearers it names.
-  template <bool kLinkFaults>
+  /// `kTiled`: this radio is a tile (its own instantiation, so that runs in one piece never test).
+  template <bool kLinkFaults, bool kTiled>
   Heard hear(const Outgoing& out, const FrameRecord* remote = nullptr);
-  void book_heard(std::size_t type_index, std::uint32_t bytes, const Heard& heard);
+  [[gnu::always_inline]] void book_heard(std::size_t type_index, std::uint32_t bytes,
+                                         const Heard& heard) {
+    totals_[type_index].rx_count += heard.received;
+    totals_[type_index].rx_bytes += heard.received * bytes;
+    total_heard_bytes_ += heard.hearers * bytes;
+    heard_bytes_by_type_[type_index] += heard.hearers * bytes;
+    if (tiled_) [[unlikely]] {  // the tile's own share, for the tile that absorbs it
+      static_heard_bytes_ += heard.static_hearers * bytes;
+      static_heard_by_type_[type_index] += heard.static_hearers * bytes;
+      static_totals_[type_index].rx_count += heard.static_received;
+      static_totals_[type_index].rx_bytes += heard.static_received * bytes;
+    }
+  }
   /// A partition stands between `from` and `to` / the loss there with degraded areas (out of
   /// line: only runs with link faults in force ask).
   [[gnu::noinline]] bool link_cut(const Vec2& from, NodeId to) const;
@@ -453,6 +457,7 @@ class Radio {
     std::uint32_t type = 0;  // its message type, for the heard bytes by type
   };
   /// Books `job`; returns its static hearers.
+  template <bool kTiled>
   std::uint64_t book_overhearing(const OverhearingJob& job) const;
   void start_overhearing_thread();
   /// Returns once the thread has booked all but `behind` of the hand-overs published.
@@ -526,12 +531,16 @@ class Radio {
   bool owned_slot(std::uint32_t hot) const {
     return hot >= owned_first_ && hot < owned_end_;
   }
+  double band_y_min_ = 0.0, band_y_max_ = 0.0;  // its static nodes' extent in y
+  bool reaches_band(const Vec2& center, double range) const;
   std::vector<FrameRecord> outbox_;
   std::vector<NodeId> record_mobiles_;
   sim::ExactSum static_tx_j_;
   std::array<sim::ExactSum, kMaxMessageTypes> static_tx_j_by_type_{};
   std::uint64_t static_heard_bytes_ = 0;
   std::array<std::uint64_t, kMaxMessageTypes> static_heard_by_type_{};
+  std::array<TypeCounters, kMaxMessageTypes> static_totals_{};
+  std::vector<const Radio*> siblings_;
 };
 
 template <class Visit>

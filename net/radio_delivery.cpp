@@ -63,9 +63,7 @@ void Radio::hand_over(const Frame& frame, NodeId receiver) {
   }
   // What the receiver's handler schedules is its own (the kernel's origin order; only then:
   // a store into the simulator on every reception cost the scheduling order 2 %).
-  if (simulator_.ties_by_origin()) [[unlikely]]
-    simulator_.act_as(sim::origin_of(receiver));
-  sim::Fingerprint& fp = simulator_.fingerprint_stream();
+  sim::Fingerprint& fp = simulator_.fingerprint_stream_as(sim::origin_of(receiver));
   fp.mix((std::uint64_t{sim::index(frame.source)} << 32) | sim::index(receiver));
   fp.mix((std::uint64_t{static_cast<std::uint8_t>(frame.type)} << 32) | frame.size_bytes);
   if (listener_) listener_->on_frame(receiver, frame);
@@ -97,8 +95,9 @@ Radio::Batch& Radio::batch_by_origin(sim::Time arrival, bool open, const sim::Ev
   }
   const std::uint32_t batch = sim::reuse_or_append(free_batches_, batches_);
   batches_[batch].keys.push_back(key);
-  // It runs as its first frame's sender; hand_over acts as each receiver.
-  simulator_.at_keyed(arrival, key, key.origin, [this, batch] { run_batch<true>(batch); });
+  // Its time goes into no stream: hand_over acts as each receiver and mixes it into theirs.
+  simulator_.at_keyed(arrival, key, sim::Simulator::kNoStream,
+                      [this, batch] { run_batch<true>(batch); });
   open_batch_ = batch;
   open_batch_time_ = arrival;
   return batches_[batch];
@@ -120,7 +119,7 @@ void Radio::run_batch(std::uint32_t batch) {
       const sim::EventKey key = batches_[batch].keys[i];
       if (i > begin && !simulator_.nothing_due_before(key)) {
         batches_[batch].next = static_cast<std::uint32_t>(i);
-        simulator_.at_keyed(simulator_.now(), key, key.origin,
+        simulator_.at_keyed(simulator_.now(), key, sim::Simulator::kNoStream,
                             [this, batch] { run_batch<true>(batch); });
         return;
       }

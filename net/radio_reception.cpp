@@ -14,6 +14,7 @@ namespace {
 constexpr std::uint64_t kLossPurpose = sim::purpose("radio.loss");
 }  // namespace
 
+template <bool kTiled>
 [[gnu::always_inline]] inline std::uint64_t Radio::book_overhearing(
     const OverhearingJob& job) const {
   std::uint64_t* const heard_diff = heard_diff_.data();
@@ -22,7 +23,7 @@ constexpr std::uint64_t kLossPurpose = sim::purpose("radio.loss");
   // Overhearing is one packed word per run end, each prefetched with the line's estimate. The
   // lambdas capture no references, so nothing is reloaded after each write.
   std::uint64_t hearers = 0;
-  if (tiled_) [[unlikely]] {
+  if constexpr (kTiled) {
     // A tile books its own slots only: each run cut to them.
     const std::uint32_t first = owned_first_, end = owned_end_;
     line_index_.for_each_run_within(center, job.range, [&](std::uint32_t a, std::uint32_t c) {
@@ -49,7 +50,7 @@ constexpr std::uint64_t kLossPurpose = sim::purpose("radio.loss");
   // static addressee: take them out again, as runs of one slot in the words just written.
   const auto static_count = static_cast<std::uint32_t>(static_ids_.size());
   for (const std::uint32_t hot : {job.source_hot, job.destination_hot}) {
-    if (hot >= static_count || !owned_slot(hot) ||
+    if (hot >= static_count || (kTiled && !owned_slot(hot)) ||
         !(hot == job.source_hot ? job.range >= 0.0 : line_index_.within(hot, center, job.range)))
       continue;
     heard_diff[hot] -= booking;
@@ -102,7 +103,8 @@ void Radio::overhearing_worker() {
     if (stop_worker_.load(std::memory_order_acquire)) return;
     for (; booked != published; ++booked) {
       for (const OverhearingJob& job : jobs_handed_[booked % kHandOverSlots]) {
-        const std::uint64_t heard = book_overhearing(job) * (job.booking & (kOneOverheard - 1));
+        const std::uint64_t heard =
+            book_overhearing<false>(job) * (job.booking & (kOneOverheard - 1));
         worker_heard_bytes_ += heard;
         worker_heard_by_type_[job.type] += heard;
       }
@@ -124,6 +126,11 @@ void Radio::drain_overhearing() const {
   }
 }
 
+bool Radio::reaches_band(const Vec2& center, double range) const {
+  const double slack = 1e-9 * (std::fabs(center.y()) + range + 1.0);  // rounding of y ± range
+  return center.y() + range + slack >= band_y_min_ && center.y() - range - slack <= band_y_max_;
+}
+
 bool Radio::link_cut(const Vec2& from, NodeId to) const {
   return link_faults_.cut(from, position(to));
 }
@@ -132,7 +139,7 @@ double Radio::link_loss(const Vec2& from, NodeId to) const {
   return 1.0 - (1.0 - params_.loss) * (1.0 - link_faults_.loss(from, position(to)));
 }
 
-template <bool kLinkFaults>
+template <bool kLinkFaults, bool kTiled>
 Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
   const NodeId source = out.source, destination = out.destination;
   const std::size_t source_index = out.source_index, type_index = out.type_index;
@@ -141,7 +148,7 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
   const std::uint64_t frame_number = out.frame_number;
   const bool battery = battery_limited();
   const bool guarded_nodes = guarded();
-  const bool tiled = tiled_;
+  constexpr bool tiled = kTiled;  // runs in one piece never test for tiles
   // Partitions and degraded areas in force: each reception is asked about (rare: faults only).
   constexpr bool links = kLinkFaults;
   const auto type = static_cast<MessageType>(type_index);
@@ -204,7 +211,9 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
   const bool bulk = use_lines_ && !guarded_nodes && !links && (!is_broadcast || params_.loss <= 0);
   const bool collect = is_broadcast && (static_interest_ & type_bit) != 0;
   const bool everyone_wants = (static_interest_common_ & type_bit) != 0;  // no per-node check
-  if (use_lines_) {
+  if (tiled && !reaches_band(center, range)) {
+    // No static node of this tile within reach (another tile's frame, a robot's far away).
+  } else if (use_lines_) {
     const NodeId* const slots = line_index_.ids().data();
     std::uint64_t* const count_diff =
         rx_count_diff_.data() + type_index * (static_cast<std::size_t>(heard_bytes_.size()) + 1);
@@ -243,14 +252,14 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
         jobs_filling_.push_back(job);
         if (jobs_filling_.size() >= kJobsPerHandOver) hand_over_jobs();
       } else {
-        hearers += book_overhearing(job);
+        hearers += book_overhearing<kTiled>(job);
       }
     } else if (bulk) {
       // A broadcast's bytes heard are its bytes received (folded into both by materialize).
       line_index_.for_each_run_within(
           center, range,
           [&](std::uint32_t a, std::uint32_t c) {
-            if (tiled) {  // a tile books its own slots only
+            if constexpr (tiled) {  // a tile books its own slots only
               a = std::max(a, owned_first_);
               c = std::min(c, owned_end_);
               if (a >= c) return;
@@ -269,7 +278,11 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
           prefetch_both);
     } else {
       line_index_.for_each_run_within(center, range, [&](std::uint32_t a, std::uint32_t c) {
-        for (std::uint32_t k = std::max(a, owned_first_); k < std::min(c, owned_end_); ++k) {
+        if constexpr (tiled) {
+          a = std::max(a, owned_first_);
+          c = std::min(c, owned_end_);
+        }
+        for (std::uint32_t k = a; k < c; ++k) {
           if (k == source_hot || k == destination_hot) continue;
           if (is_broadcast)
             receive(slots[k], k);
@@ -283,7 +296,8 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
       // A broadcast's runs included its sender (a unicast's job books its own out): take it out
       // again, as a run of one slot in the difference words the runs just wrote. A static
       // sender sits at the center (distance exactly 0): in every run of a valid range.
-      if (is_broadcast && source_hot < static_count && owned_slot(source_hot) && range >= 0.0) {
+      if (is_broadcast && source_hot < static_count && (!tiled || owned_slot(source_hot)) &&
+          range >= 0.0) {
         --hearers;
         --count_diff[source_hot];
         ++count_diff[source_hot + 1];
@@ -295,21 +309,24 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
   } else {
     const NodeId* const slots = static_grid_.ids().data();
     static_grid_.for_each_slot_within(center, range, [&](std::uint32_t k, double) {
-      if (k == source_hot || k == destination_hot || !owned_slot(k)) return;
+      if (k == source_hot || k == destination_hot || (tiled && !owned_slot(k))) return;
       if (is_broadcast)
         receive(slots[k], k);
       else
         overhear(slots[k], k);
     });
   }
-  std::uint64_t static_hearers = hearers;
+  std::uint64_t static_hearers = hearers, static_received = received;
   // A static addressee is booked after the mobile hearers, but is the tile's own share.
   auto receive_destination = [&] {
-    const std::uint64_t before = hearers;
+    const std::uint64_t hearers_before = hearers, received_before = received;
     receive(destination, destination_hot);
-    if (destination_hot < static_count) static_hearers += hearers - before;
+    if (tiled && destination_hot < static_count) {
+      static_hearers += hearers - hearers_before;
+      static_received += received - received_before;
+    }
   };
-  if (remote != nullptr) [[unlikely]] {
+  if (tiled && remote != nullptr) {
     // Another tile's frame: the mobile nodes that heard it then, and its addressee if this tile
     // holds it (the sender's tile counted an unreachable one).
     for (const NodeId id : remote->mobile_hearers)
@@ -318,7 +335,8 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
       else
         overhear(id, hot_[sim::index(id)]);
     if (!is_broadcast && remote->destination_reached && owns(destination)) receive_destination();
-    return Heard{hearers, received, lost, static_hearers, remote->destination_reached};
+    return Heard{hearers,        received,        lost,
+                 static_hearers, static_received, remote->destination_reached};
   }
   // A tile's static sender names the mobile hearers in its frame's record.
   const bool record = tiled && source_hot < static_count;
@@ -350,10 +368,11 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
     else if (!tiled || owns(destination))
       receive_destination();
   }
-  return Heard{hearers, received, lost, static_hearers, reached};
+  return Heard{hearers, received, lost, static_hearers, static_received, reached};
 }
 
-template Radio::Heard Radio::hear<false>(const Outgoing& out, const FrameRecord* remote);
-template Radio::Heard Radio::hear<true>(const Outgoing& out, const FrameRecord* remote);
+template Radio::Heard Radio::hear<false, false>(const Outgoing& out, const FrameRecord* remote);
+template Radio::Heard Radio::hear<true, false>(const Outgoing& out, const FrameRecord* remote);
+template Radio::Heard Radio::hear<false, true>(const Outgoing& out, const FrameRecord* remote);
 
 }  // namespace masnet::net

@@ -3,6 +3,7 @@
 // to the other tiles, takes theirs in, and at the end absorbs the other tiles' ledgers so that
 // one radio reads as the whole run's.
 #include <algorithm>
+#include <limits>
 
 #include "net/radio.hpp"
 
@@ -22,6 +23,14 @@ void Radio::own_static_slots(std::uint32_t first, std::uint32_t end) {
   owned_first_ = first;
   owned_end_ = end;
   tiled_ = true;
+  // A frame whose disk misses the band in y books nobody here: skipped before any search.
+  band_y_min_ = std::numeric_limits<double>::infinity();
+  band_y_max_ = -band_y_min_;
+  for (std::uint32_t k = first; k < end; ++k) {
+    const double y = positions_[sim::index(static_slots()[k])].y();
+    band_y_min_ = std::min(band_y_min_, y);
+    band_y_max_ = std::max(band_y_max_, y);
+  }
   // Every tile would start its own: the tiles are the run's parallelism.
   params_.overhearing_thread = false;
 }
@@ -37,7 +46,7 @@ void Radio::inject(const FrameRecord& record) {
   const Outgoing out{
       record.source, record.destination, sim::index(record.source),   record.type_index,
       record.bytes,  record.range,       record.destination_distance, record.frame_number};
-  const Heard heard = hear<false>(out, &record);
+  const Heard heard = hear<false, true>(out, &record);
   book_heard(record.type_index, record.bytes, heard);
   if (scratch_receivers_.empty()) return;
   Payload payload = record.payload;
@@ -71,6 +80,7 @@ void Radio::absorb_tile(Radio& tile) {
     }
   }
   MASNET_ASSERT(n_nodes == tx_stride, "the index covers every node");
+  std::erase(siblings_, &tile);  // its share is in the totals now
   total_tx_j_.add(tile.static_tx_j_);
   total_heard_bytes_ += tile.static_heard_bytes_;
   for (std::size_t t = 0; t < kMaxMessageTypes; ++t) {

@@ -78,9 +78,14 @@ std::uint64_t Simulator::run_loop(std::int64_t limit_ns) {
     MASNET_ASSERT(time_ns >= to_ns(now_), "time went backwards");
     now_ = Time{Duration{time_ns}};
     ++events_run_;
-    // Every push in the origin order reached its owner's state: no bounds check here.
-    Fingerprint& stream = kByOrigin ? origins_[tag.owner].stream : fingerprint_;
-    stream.mix(static_cast<std::uint64_t>(time_ns));
+    // Every push in the origin order reached its owner's state (but kNoStream's, which has none):
+    // no bounds check here.
+    if constexpr (kByOrigin) {
+      if (tag.owner != kNoStream)
+        origins_[tag.owner].stream.mix(static_cast<std::uint64_t>(time_ns));
+    } else {
+      fingerprint_.mix(static_cast<std::uint64_t>(time_ns));
+    }
     action();
     // One decrement per event, hook or not: a second copy of the loop for runs with a hook
     // made the compiler stop inlining the queue's pop (4 % more instructions in PHOLD).

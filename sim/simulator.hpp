@@ -71,20 +71,25 @@ class Simulator {
   }
   /// ...and then runs that part as if it were that event: what it schedules for this instant
   /// follows `key`. Precondition: origin order, key not below the running key (asserted).
+  /// The parts mix themselves into the fingerprint where they belong (an event that does the
+  /// work of several is scheduled for `kNoStream`).
   void continue_as(const EventKey& key) {
     MASNET_ASSERT(!(key < running_), "an event's parts continue in key order");
-    // Each part counts in the fingerprint as the event it stands for: its time, in its origin's
-    // stream (the first part is the event itself, which the kernel counted).
-    if (key != running_) origin(key.origin).stream.mix(static_cast<std::uint64_t>(to_ns(now_)));
     running_ = key;
   }
+  /// The owner of an event whose time goes into no fingerprint stream: one that does the work of
+  /// several (a delivery batch), each part of which mixes itself into the stream of whoever it
+  /// reaches — so that the streams do not depend on how the parts were grouped into events, nor
+  /// on which part of a partitioned run delivered them. Its action must `act_as` an origin
+  /// before it schedules anything.
+  static constexpr std::uint32_t kNoStream = 0xFFFFFFFFu;
   /// Schedules `action` at `when` with a key made by `next_key` (here or in another partition),
   /// to run as `owner`. Precondition: the origin order, when >= now() (asserted).
   template <class F>
   EventId at_keyed(Time when, EventKey key, std::uint32_t owner, F&& action) {
     MASNET_ASSERT(when >= now_, "event scheduled before the current time");
     MASNET_ASSERT(queue_.ties_by_origin(), "a keyed event needs the origin order");
-    reach(owner);  // the run loop mixes the event's time into its owner's stream unchecked
+    if (owner != kNoStream) reach(owner);  // the run loop mixes into its owner's stream
     return queue_.push(to_ns(when), EventAction::make(std::forward<F>(action)),
                        OriginTag{key, owner});
   }
@@ -155,6 +160,17 @@ class Simulator {
   /// each delivered frame's header): the acting origin's in the origin order.
   Fingerprint& fingerprint_stream() {
     return queue_.ties_by_origin() ? origin(origin_).stream : fingerprint_;
+  }
+  /// A model handing one event to several nodes (a broadcast's receivers), before each: in the
+  /// origin order it acts as `origin` from now on and the time goes into that origin's stream,
+  /// which it returns (the event stands for one of its own there); in the scheduling order the
+  /// one stream, which has the time already.
+  Fingerprint& fingerprint_stream_as(std::uint32_t origin_now) {
+    if (!queue_.ties_by_origin()) return fingerprint_;
+    origin_ = origin_now;
+    Fingerprint& stream = origin(origin_now).stream;
+    stream.mix(static_cast<std::uint64_t>(to_ns(now_)));
+    return stream;
   }
   /// The origin order's streams by origin (untouched ones for origins that never ran).
   std::vector<Fingerprint> origin_streams() const;

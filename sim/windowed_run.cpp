@@ -51,8 +51,10 @@ WindowedRun::~WindowedRun() {
 void WindowedRun::run_share(unsigned thread) {
   // A fixed share per thread: which thread runs a part does not matter, but keeping a part on
   // one thread keeps its data in that core's caches.
-  for (std::size_t p = thread; p < parts_.size(); p += threads())
+  for (std::size_t p = thread; p < parts_.size(); p += threads()) {
+    if (prepare_) prepare_(p);
     parts_[p]->run_until(window_end_);
+  }
 }
 
 void WindowedRun::work(unsigned thread) {

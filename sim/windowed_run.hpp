@@ -38,6 +38,11 @@ class WindowedRun {
   void run_until(Time end, const std::function<void(Time window_end)>& exchange,
                  const std::function<Time(Time earliest_here)>& agree = {});
 
+  /// `prepare(part)` runs on the thread that runs `part`, before each of its windows: work the
+  /// exchange handed over that each part can do alone (taking in the messages for it) is then
+  /// done side by side instead of on the calling thread.
+  void set_prepare(std::function<void(std::size_t part)> prepare) { prepare_ = std::move(prepare); }
+
   std::uint64_t windows() const { return windows_; }
   unsigned threads() const { return threads_; }
 
@@ -64,6 +69,7 @@ class WindowedRun {
   std::vector<std::thread> workers_;
   Barrier start_, done_;  // around each window
   Time window_end_{};
+  std::function<void(std::size_t)> prepare_;
   bool stopping_ = false;
   std::uint64_t windows_ = 0;
 };

@@ -26,6 +26,7 @@ struct RunArgs {
   std::string log_level = "warn";
   std::string log_file;
   ServeArgs serve;
+  unsigned tiles = 1;  ///< cut the run into this many tiles by space (docs/performance.md)
 };
 
 /// Adds the `run` subcommand to `app`, filling `args`; returns it (test `*sub` after parse).

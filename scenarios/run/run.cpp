@@ -6,6 +6,7 @@
 
 #include "scenarios/output/output_file.hpp"
 #include "scenarios/run/run_warnings.hpp"
+#include "sim/cpus.hpp"
 #include "sim/fingerprint.hpp"
 #include "sim/log.hpp"
 
@@ -20,22 +21,28 @@ std::unique_ptr<sim::Simulator> make_simulator(const ScenarioDef& def) {
 }
 }  // namespace
 
-Run::Run(ScenarioDef def)
+Run::Run(ScenarioDef def, unsigned tiles, unsigned threads)
     : def_(std::move(def)),
       simulator_(make_simulator(def_)),
       world_(std::make_unique<agents::World>(*simulator_, def_.world)),
       recorder_(std::make_unique<Recorder>(*world_, def_)) {
   world_->set_observer(recorder_.get());
+  if (tiles > 1) {
+    MASNET_ASSERT(tiles_problem(def_, tiles).empty(), "a scenario the tiles run");
+    tiles_ = std::make_unique<RunTiles>(
+        *simulator_, *world_, def_.world, tiles,
+        threads > 0 ? threads : static_cast<unsigned>(sim::allowed_cpu_count()));
+  }
   if (world_->group_count() > 0) formation_ = std::make_unique<FormationRecorder>(*world_);
 }
 
 Run::~Run() = default;
 
 std::uint64_t Run::events() const {
-  return simulator_->events_run();
+  return tiles_ ? tiles_->events() : simulator_->events_run();
 }
 std::string Run::fingerprint() const {
-  return simulator_->fingerprint().hex();
+  return tiles_ ? tiles_->fingerprint().hex() : simulator_->fingerprint().hex();
 }
 std::string Run::traffic_fingerprint() const {
   return traffic_fingerprint_;
@@ -52,6 +59,7 @@ constexpr std::size_t kReplayStream = 0, kWatcherStream = 1;
 void Run::execute(const ProgressFn& progress, RunWatcher* watcher) {
   const auto wall_start = std::chrono::steady_clock::now();
   world_->start();
+  if (tiles_) tiles_->start();
   // Checkpoints on integer grids of each period (no accumulated rounding): the recorder, the
   // replay and a watcher observe between run_until chunks, never as an event.
   const sim::Time end = sim::time_at(def_.duration_s);
@@ -102,7 +110,13 @@ void Run::execute(const ProgressFn& progress, RunWatcher* watcher) {
     const sim::Time t_frame = watcher ? sim::kTimeZero + next_frame * frame_period : end;
     sim::Time next = std::min({t_sample, t_trajectory, t_replay, t_frame, end});
     if (next_snapshot < snapshots.size()) next = std::min(next, snapshots[next_snapshot]);
-    simulator_->run_until(next);
+    if (tiles_) {
+      tiles_->run_until(next);
+      // The other tiles' sensors join the first tile's world before the end is sampled.
+      if (next == end) tiles_->absorb();
+    } else {
+      simulator_->run_until(next);
+    }
     if (stopped_after_update) {
       // Stopped inside the chunk, possibly with more events at this very time: show the frame,
       // then finish the chunk as if nothing had happened.
@@ -199,8 +213,8 @@ nlohmann::json Run::summary() const {
   j["seed"] = def_.seed;
   j["sim_time_s"] = def_.duration_s;
   j["wall_time_s"] = wall_time_s_;
-  j["events"] = simulator_->events_run();
-  j["fingerprint"] = simulator_->fingerprint().hex();
+  j["events"] = events();
+  j["fingerprint"] = fingerprint();
   j["traffic_fingerprint"] = traffic_fingerprint();
   j["run_key"] = run_key(def_);
   if (!baseline_fingerprint_.empty()) j["baseline_fingerprint"] = baseline_fingerprint_;

@@ -11,6 +11,7 @@
 #include "scenarios/loader/scenario.hpp"
 #include "scenarios/run/formation_outputs.hpp"
 #include "scenarios/run/recorder.hpp"
+#include "scenarios/run/run_tiles.hpp"
 #include "scenarios/run/run_watcher.hpp"
 #include "scenarios/run/scene_capture.hpp"
 
@@ -21,7 +22,9 @@ using ProgressFn = std::function<void(double t_s, std::uint64_t events)>;
 
 class Run {
  public:
-  explicit Run(ScenarioDef def);
+  /// `tiles` > 1 cuts the run into that many tiles by space (run_tiles.hpp; `tiles_problem`
+  /// must be empty) on `threads` threads (0: one per allowed processor, at most one per tile).
+  explicit Run(ScenarioDef def, unsigned tiles = 1, unsigned threads = 0);
   ~Run();
 
   /// Simulates the whole duration; `watcher` (may be null) sees it as it happens.
@@ -53,6 +56,7 @@ class Run {
   std::unique_ptr<sim::Simulator> simulator_;
   std::unique_ptr<agents::World> world_;
   std::unique_ptr<Recorder> recorder_;
+  std::unique_ptr<RunTiles> tiles_;  // a run cut into tiles; null in one piece
   std::unique_ptr<FormationRecorder> formation_;
   std::unique_ptr<SceneCapture> scene_;
   std::vector<std::string> replay_frames_;  // serialised: a run may hold thousands

@@ -180,6 +180,18 @@ void check_tiles_equal_whole(const net::RadioParams& params) {
               crossed_reports += std::get<3>(r) == static_cast<int>(net::MessageType::report) &&
                                  !tile->radio->owns(sim::node_id(std::get<1>(r)));
       CHECK(crossed_reports > 0);
+      // The kernel's fingerprint: each origin's stream from a tile that holds it (the world's
+      // and the robots' are the same in every tile).
+      std::vector<sim::Fingerprint> streams(1 + kSensors + kRobots);
+      for (std::uint32_t origin = 0; origin < streams.size(); ++origin)
+        for (const auto& tile : tiled.tiles) {
+          const std::vector<sim::Fingerprint> held = tile->sim.origin_streams();
+          if (origin == 0 || tile->radio->owns(sim::node_id(origin - 1))) {
+            if (origin < held.size()) streams[origin] = held[origin];
+            break;
+          }
+        }
+      CHECK(sim::combine_origin_streams(streams).value() == whole.sim.fingerprint().value());
       net::Radio& merged = *tiled.tiles[0]->radio;
       for (std::uint32_t i = 1; i < count; ++i)
         merged.absorb_tile(*tiled.tiles[i]->radio);

@@ -1,5 +1,6 @@
 // `masnet run --log-level / --log-file` (docs/logging.md): what a debug log shows of one robot,
-// that logging never changes a run, and how bad options are refused.
+// that logging never changes a run, and how bad options are refused; `--tiles` (one run cut into
+// bands of sensors, docs/decisions/0012-partitioned-runs.md) gives the run in one piece.
 #include <catch2/catch.hpp>
 
 #include <sys/wait.h>
@@ -175,4 +176,23 @@ TEST_CASE("A bad log level or an unwritable log file is refused before simulatin
                           (folder.path / "run").string() +
                           "', which is replaced at the end of the run\n");
   CHECK(fs::is_empty(folder.path / "run"));
+}
+
+TEST_CASE("masnet run --tiles gives the run in one piece, and refuses what the tiles cannot run",
+          "[scenarios]") {
+  Folder folder("tiles");
+  const Result scheduling = masnet_run(folder.path, "--tiles 2");
+  CHECK(scheduling.status == 2);
+  CHECK(scheduling.err ==
+        "masnet run: --tiles 2: tiles need `tie_order: origin`, the order each tile computes "
+        "alone (docs/time-and-ordering.md)\n");
+  CHECK_FALSE(fs::exists(folder.path / "run"));
+
+  const Result whole = masnet_run(folder.path, "--set tie_order=origin --quiet");
+  REQUIRE(whole.status == 0);
+  const std::string expected = fingerprint_of(folder.path / "run");
+  const Result cut = masnet_run(folder.path, "--set tie_order=origin --quiet --force --tiles 2");
+  REQUIRE(cut.status == 0);
+  CHECK(fingerprint_of(folder.path / "run") == expected);
+  CHECK(slurp(folder.path / "run/nodes.csv").size() > 0);
 }

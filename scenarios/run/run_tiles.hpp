@@ -1,0 +1,71 @@
+#pragma once
+// One run cut into tiles by space (docs/decisions/0012-partitioned-runs.md): each tile is a
+// world of its own — its own simulator, in the origin order — that runs a band of the sensors and
+// every robot; the tiles advance together in conservative windows of the radio's latency on a
+// pool of threads, and the frames their sensors send cross to the other tiles between windows.
+// At the end the other tiles are absorbed into the first, whose world then reads as the whole
+// run's: every output and the fingerprint are those of the run in one piece.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "agents/world.hpp"
+#include "scenarios/loader/scenario.hpp"
+#include "sim/fingerprint.hpp"
+#include "sim/windowed_run.hpp"
+
+namespace masnet::scenarios {
+
+/// Why `def` cannot run in `tiles` tiles (empty: it can).
+std::string tiles_problem(const ScenarioDef& def, unsigned tiles);
+
+class RunTiles {
+ public:
+  /// Tile 0 is the run's own `simulator` and `world`; makes the others from `def` and gives each
+  /// tile its band of sensors. `threads`: at most one per tile and per allowed processor.
+  RunTiles(sim::Simulator& simulator, agents::World& world, const agents::WorldDef& def,
+           unsigned tiles, unsigned threads);
+  ~RunTiles();
+  RunTiles(const RunTiles&) = delete;
+  RunTiles& operator=(const RunTiles&) = delete;
+
+  /// Starts the other tiles' worlds (the run starts tile 0's).
+  void start();
+  /// Advances every tile to `limit`.
+  void run_until(sim::Time limit);
+  /// Takes the other tiles into tile 0, once, at the end; before that, the fingerprint.
+  void absorb();
+  /// Each origin's stream from the tile that holds it (after absorb()).
+  const sim::Fingerprint& fingerprint() const { return fingerprint_; }
+  /// Every tile's kernel events: a cost, like the wall time — a frame that reaches two tiles is
+  /// delivered by an event in each.
+  std::uint64_t events() const;
+  std::uint64_t windows() const { return windowed_ ? windowed_->windows() : 0; }
+
+ private:
+  struct Tile {
+    std::unique_ptr<sim::Simulator> simulator;
+    std::unique_ptr<agents::World> world;
+  };
+  void exchange();
+  /// Books and delivers into `tile` the frames the other tiles sent in the last window.
+  void take_in(std::size_t tile);
+  /// Takes every published frame in (between chunks: observers see every tile's bookings).
+  void take_in_all();
+
+  std::vector<sim::Simulator*> simulators_;  // every tile's, tile 0 first
+  std::vector<agents::World*> worlds_;
+  std::vector<Tile> others_;  // tiles 1 ...
+  std::unique_ptr<sim::WindowedRun> windowed_;
+  // Each tile's frames of the last window, read by every other tile at the start of the next
+  // (each on its own thread) while it sends new ones into its radio's outbox.
+  std::vector<std::vector<net::FrameRecord>> published_;
+  sim::Time published_earliest_ = sim::kTimeMax;  // the earliest arrival among them
+  sim::Duration lookahead_{};
+  unsigned threads_ = 1;
+  sim::Fingerprint fingerprint_;
+  bool absorbed_ = false;
+};
+
+}  // namespace masnet::scenarios

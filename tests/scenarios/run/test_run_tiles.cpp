@@ -1,0 +1,100 @@
+// A run cut into tiles by space (scenarios/run/run_tiles.hpp, docs/decisions/0012-partitioned-
+// runs.md): bands of sensors side by side in conservative windows, every robot in every tile.
+// Every output file and both fingerprints equal the run in one piece, for 2 and 3 tiles on one
+// and two threads; what the tiles cannot run yet is refused with the reason.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "../text_files.hpp"
+#include "scenarios/loader/scenario.hpp"
+#include "scenarios/run/run.hpp"
+
+using namespace masnet;
+using namespace masnet::scenarios;
+namespace fs = std::filesystem;
+
+namespace {
+
+ScenarioDef load(const std::string& relative, const std::vector<std::string>& overrides) {
+  LoadResult loaded = load_scenario(std::string(MASNET_SOURCE_DIR) + "/" + relative, overrides);
+  REQUIRE(loaded.scenario);
+  return *loaded.scenario;
+}
+
+struct Outcome {
+  std::string fingerprint, traffic;
+  nlohmann::json summary;
+  std::vector<std::string> files;
+};
+
+Outcome run_in(const ScenarioDef& def, unsigned tiles, unsigned threads) {
+  Run run(def, tiles, threads);
+  run.execute();
+  Outcome o{run.fingerprint(), run.traffic_fingerprint(), run.summary(), {}};
+  // What says how the run was made (its cost), not what happened in it.
+  o.summary.erase("wall_time_s");
+  o.summary.erase("events");
+  const fs::path dir =
+      fs::temp_directory_path() / ("masnet-test-tiles-" + std::to_string(::getpid()) + "-" +
+                                   std::to_string(tiles) + "-" + std::to_string(threads));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  run.write_files(dir.string());
+  for (const char* file :
+       {"nodes.csv", "timeseries.csv", "trajectories.csv", "snapshots.json", "replay.json"})
+    o.files.push_back(masnet::test::slurp(dir / file));
+  fs::remove_all(dir);
+  return o;
+}
+
+void check_tiles_equal_whole(const ScenarioDef& def) {
+  const Outcome whole = run_in(def, 1, 1);
+  for (const auto& [tiles, threads] : {std::pair{2u, 1u}, std::pair{3u, 2u}}) {
+    INFO(tiles << " tiles on " << threads << " threads");
+    const Outcome cut = run_in(def, tiles, threads);
+    CHECK(cut.fingerprint == whole.fingerprint);
+    CHECK(cut.traffic == whole.traffic);
+    CHECK(cut.summary == whole.summary);
+    for (std::size_t f = 0; f < whole.files.size(); ++f) {
+      INFO("file " << f);
+      CHECK(cut.files[f] == whole.files[f]);
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("tiles: the scaling benchmark cut into 2 and 3 bands gives every output of the whole run",
+          "[scenarios][tiles]") {
+  // 10⁴ sensors, 100 robots, samples every 10 ms: the samples between windows read every
+  // tile's share of the messages and energy.
+  const ScenarioDef def = load("scenarios/bench/scaling_1e4.yaml",
+                               {"tie_order=origin", "duration=0.06", "output.sample_period=0.01",
+                                "output.trajectory_period=0.01"});
+  REQUIRE(tiles_problem(def, 3).empty());
+  check_tiles_equal_whole(def);
+}
+
+TEST_CASE("tiles: the acoustic scenario cut into bands gives every output of the whole run",
+          "[scenarios][tiles]") {
+  const ScenarioDef def = load("scenarios/paper/acoustic_tracking.yaml",
+                               {"tie_order=origin", "duration=0.5", "output.snapshots=[0.25]"});
+  REQUIRE(tiles_problem(def, 2).empty());
+  check_tiles_equal_whole(def);
+}
+
+TEST_CASE("tiles: what they cannot run yet is refused with the reason", "[scenarios][tiles]") {
+  const std::string bench = "scenarios/bench/scaling_1e4.yaml";
+  CHECK(tiles_problem(load(bench, {}), 1).empty());
+  CHECK(tiles_problem(load(bench, {}), 2) ==
+        "tiles need `tie_order: origin`, the order each tile computes alone "
+        "(docs/time-and-ordering.md)");
+  CHECK(tiles_problem(load(bench, {"tie_order=origin", "radio.level=csma"}), 2) ==
+        "tiles need radio.level ideal or airtime");
+  CHECK(tiles_problem(load(bench, {"tie_order=origin", "sensors.battery=1"}), 2) ==
+        "tiles do not run batteries yet");
+  CHECK(tiles_problem(load(bench, {"tie_order=origin"}), 0) == "expected at least 1 tile");
+}
