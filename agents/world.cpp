@@ -1,5 +1,7 @@
 #include "agents/world.hpp"
 
+#include "net/tile_ledger.hpp"
+
 #include "agents/follower_agent.hpp"
 #include "agents/robot_agent.hpp"
 
@@ -152,11 +154,11 @@ void World::start() {
       schedule(sensor_node(s), sensor_key(s));
 }
 
-void World::absorb_tile(World& tile) {
-  radio_.absorb_tile(tile.radio_);
-  absorbed_.readings += tile.sensor_readings();
-  absorbed_.point_in_cell_tests += tile.sensor_point_in_cell_tests();
-  absorbed_.clamped_readings += tile.clamped_readings();
+void World::absorb_tile(const TileCounts& counts, const net::Radio::TileLedger& ledger) {
+  radio_.absorb_tile(ledger);
+  absorbed_.readings += counts.readings;
+  absorbed_.point_in_cell_tests += counts.point_in_cell_tests;
+  absorbed_.clamped_readings += counts.clamped_readings;
 }
 
 std::uint32_t World::send(NodeId from, NodeId to, double range, net::Payload payload) {

@@ -165,9 +165,16 @@ class World final : public net::RadioListener,
   void own_sensor_slots(std::uint32_t first, std::uint32_t end) {
     radio_.own_static_slots(first, end);
   }
-  /// Takes over another tile's sensors (their radio ledger and the sensors' counts): this world
-  /// then reads as the whole run's. At the end of the run.
-  void absorb_tile(World& tile);
+  /// What a tile's sensors counted (readings, point-in-cell tests, clamped readings).
+  struct TileCounts {
+    std::uint64_t readings = 0, point_in_cell_tests = 0, clamped_readings = 0;
+  };
+  TileCounts tile_counts() const {
+    return {sensor_readings(), sensor_point_in_cell_tests(), clamped_readings()};
+  }
+  /// Takes over another tile's sensors (their radio ledger, net/tile_ledger.hpp, and their
+  /// counts): this world then reads as the whole run's. At the end of the run.
+  void absorb_tile(const TileCounts& counts, const net::Radio::TileLedger& ledger);
 
   // ---- Robot groups (docs/formations.md): robot g leads group g --------------------------------
   /// Followers, group by group (follower f is slot f % (size − 1) of group f / (size − 1)); their
@@ -263,9 +270,7 @@ class World final : public net::RadioListener,
   /// The nodes fault `fault` kills, decided when it strikes.
   std::vector<NodeId> fault_victims(std::size_t fault);
   std::vector<std::vector<NodeId>> fault_victims_;  // [fault]: who it took down
-  struct Absorbed {                                 // the counts of the tiles this one absorbed
-    std::uint64_t readings = 0, point_in_cell_tests = 0, clamped_readings = 0;
-  } absorbed_;
+  TileCounts absorbed_;                             // the counts of the tiles this one absorbed
 };
 
 }  // namespace masnet::agents

@@ -224,10 +224,10 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   // A tile's static senders are its own share; the mobile ones are every tile's.
   const bool shipped = tiled_ && hot_[source_index] < static_ids_.size();
   if (shipped) [[unlikely]] {
-    static_tx_j_.add(tx_j);
-    static_tx_j_by_type_[static_cast<std::size_t>(type)].add(tx_j);
-    ++static_totals_[static_cast<std::size_t>(type)].tx_count;
-    static_totals_[static_cast<std::size_t>(type)].tx_bytes += bytes;
+    static_share_.tx_j.add(tx_j);
+    static_share_.tx_j_by_type[static_cast<std::size_t>(type)].add(tx_j);
+    ++static_share_.counters[static_cast<std::size_t>(type)].tx_count;
+    static_share_.counters[static_cast<std::size_t>(type)].tx_bytes += bytes;
   }
   if (battery && params_.energy.idle_power_w > 0) schedule_depletion(source);
   const auto type_index = static_cast<std::size_t>(type);

@@ -26,6 +26,7 @@
 #include "net/messages.hpp"
 #include "net/propagation.hpp"
 #include "net/spatial_grid.hpp"
+#include "net/tile_totals.hpp"
 #include "net/vec2.hpp"
 #include "sim/exact_sum.hpp"
 #include "sim/simulator.hpp"
@@ -85,12 +86,6 @@ class MobilePositions {
   /// An upper bound on the speed (world units / s) of every mobile node from now until the
   /// world next calls `Radio::raise_speed_bound`.
   virtual double speed_bound() const = 0;
-};
-
-/// Per node, per message type.
-struct TypeCounters {
-  std::uint64_t tx_count = 0, tx_bytes = 0;
-  std::uint64_t rx_count = 0, rx_bytes = 0;
 };
 
 /// Per node totals beyond the per-type counters.
@@ -220,11 +215,16 @@ class Radio {
   /// Another tile's frame: books and delivers it to this tile's nodes. Precondition: its
   /// arrival is not before now.
   void inject(const FrameRecord& record);
-  /// Takes over `tile`'s static nodes (their ledger, counters and traffic) and its share of the
-  /// totals: after every tile has been absorbed, this radio reads as the whole run's.
-  void absorb_tile(Radio& tile);
-  /// Until then, the totals and energies above add these tiles' shares (read between windows).
-  void set_sibling_tiles(std::vector<const Radio*> siblings) { siblings_ = std::move(siblings); }
+  /// This tile's static nodes (their ledger, counters and traffic) and its share of the totals
+  /// (net/tile_ledger.hpp), and taking another tile's over: after every other tile has been
+  /// absorbed, this radio reads as the whole run's (and the sibling shares are dropped).
+  struct TileLedger;
+  TileLedger tile_ledger();
+  void absorb_tile(const TileLedger& tile);
+  /// Until then, the totals and energies above add the other tiles' shares, as last handed here
+  /// (between windows).
+  const TileTotals& tile_totals() const { return static_share_; }
+  void set_sibling_shares(std::vector<TileTotals> shares) { sibling_shares_ = std::move(shares); }
 
  private:
   friend class ContendedMedium;
@@ -330,10 +330,10 @@ class Radio {
     total_heard_bytes_ += heard.hearers * bytes;
     heard_bytes_by_type_[type_index] += heard.hearers * bytes;
     if (tiled_) [[unlikely]] {  // the tile's own share, for the tile that absorbs it
-      static_heard_bytes_ += heard.static_hearers * bytes;
-      static_heard_by_type_[type_index] += heard.static_hearers * bytes;
-      static_totals_[type_index].rx_count += heard.static_received;
-      static_totals_[type_index].rx_bytes += heard.static_received * bytes;
+      static_share_.heard_bytes += heard.static_hearers * bytes;
+      static_share_.heard_by_type[type_index] += heard.static_hearers * bytes;
+      static_share_.counters[type_index].rx_count += heard.static_received;
+      static_share_.counters[type_index].rx_bytes += heard.static_received * bytes;
     }
   }
   /// A partition stands between `from` and `to` / the loss there with degraded areas (out of
@@ -535,12 +535,8 @@ class Radio {
   bool reaches_band(const Vec2& center, double range) const;
   std::vector<FrameRecord> outbox_;
   std::vector<NodeId> record_mobiles_;
-  sim::ExactSum static_tx_j_;
-  std::array<sim::ExactSum, kMaxMessageTypes> static_tx_j_by_type_{};
-  std::uint64_t static_heard_bytes_ = 0;
-  std::array<std::uint64_t, kMaxMessageTypes> static_heard_by_type_{};
-  std::array<TypeCounters, kMaxMessageTypes> static_totals_{};
-  std::vector<const Radio*> siblings_;
+  TileTotals static_share_;
+  std::vector<TileTotals> sibling_shares_;
 };
 
 template <class Visit>

@@ -99,8 +99,8 @@ void Radio::materialize() const {
 TypeCounters Radio::totals(MessageType type) const {
   const auto t = static_cast<std::size_t>(type);
   TypeCounters c = totals_[t];
-  for (const Radio* tile : siblings_) {
-    const TypeCounters& share = tile->static_totals_[t];
+  for (const TileTotals& tile : sibling_shares_) {
+    const TypeCounters& share = tile.counters[t];
     c.tx_count += share.tx_count;
     c.tx_bytes += share.tx_bytes;
     c.rx_count += share.rx_count;
@@ -111,31 +111,31 @@ TypeCounters Radio::totals(MessageType type) const {
 
 double Radio::total_tx_energy_j() const {
   sim::ExactSum sum = total_tx_j_;
-  for (const Radio* tile : siblings_)
-    sum.add(tile->static_tx_j_);
+  for (const TileTotals& tile : sibling_shares_)
+    sum.add(tile.tx_j);
   return sum.value();
 }
 
 double Radio::total_rx_energy_j() const {
   drain_overhearing();
   std::uint64_t heard = total_heard_bytes_;
-  for (const Radio* tile : siblings_)
-    heard += tile->static_heard_bytes_;
+  for (const TileTotals& tile : sibling_shares_)
+    heard += tile.heard_bytes;
   return rx_energy_j(params_.energy, 8.0 * static_cast<double>(heard));
 }
 
 double Radio::type_tx_energy_j(MessageType type) const {
   sim::ExactSum sum = tx_j_by_type_[static_cast<std::size_t>(type)];
-  for (const Radio* tile : siblings_)
-    sum.add(tile->static_tx_j_by_type_[static_cast<std::size_t>(type)]);
+  for (const TileTotals& tile : sibling_shares_)
+    sum.add(tile.tx_j_by_type[static_cast<std::size_t>(type)]);
   return sum.value();
 }
 
 double Radio::type_rx_energy_j(MessageType type) const {
   drain_overhearing();
   std::uint64_t heard = heard_bytes_by_type_[static_cast<std::size_t>(type)];
-  for (const Radio* tile : siblings_)
-    heard += tile->static_heard_by_type_[static_cast<std::size_t>(type)];
+  for (const TileTotals& tile : sibling_shares_)
+    heard += tile.heard_by_type[static_cast<std::size_t>(type)];
   return net::rx_energy_j(params_.energy, 8.0 * static_cast<double>(heard));
 }
 

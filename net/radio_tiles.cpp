@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "net/radio.hpp"
+#include "net/tile_ledger.hpp"
 
 namespace masnet::net {
 
@@ -53,44 +54,76 @@ void Radio::inject(const FrameRecord& record) {
   deliver(record.arrival, out, record.sent_at, std::move(payload), &record.key);
 }
 
-void Radio::absorb_tile(Radio& tile) {
-  MASNET_ASSERT(tiled_ && tile.tiled_ && tile.nodes_.size() == nodes_.size() &&
-                    tile.static_slots() == static_slots(),
-                "tiles of one run");
+Radio::TileLedger Radio::tile_ledger() {
+  MASNET_ASSERT(tiled_, "a tile's ledger");
   materialize();
-  tile.materialize();
   const std::vector<NodeId>& slots = static_slots();
-  const std::size_t n_nodes = nodes_.size(), tx_stride = tx_.size() / type_count_;
+  TileLedger ledger;
+  ledger.first_slot = owned_first_;
+  ledger.end_slot = owned_end_;
+  ledger.totals = static_share_;
+  const std::size_t width = owned_end_ - owned_first_, tx_stride = tx_.size() / type_count_;
   const std::size_t rx_stride = heard_bytes_.size();
-  for (std::uint32_t k = tile.owned_first_; k < tile.owned_end_; ++k) {
-    const std::size_t n = sim::index(slots[k]);
-    nodes_[n] = tile.nodes_[n];
-    senders_[n] = tile.senders_[n];
-    heard_bytes_[k] = tile.heard_bytes_[k];
-    overheard_count_[k] = tile.overheard_count_[k];
+  ledger.tx.resize(type_count_ * width);
+  ledger.rx_count.resize(type_count_ * width);
+  ledger.rx_bytes.resize(type_count_ * width);
+  for (std::size_t i = 0; i < width; ++i) {
+    const std::size_t k = owned_first_ + i, n = sim::index(slots[k]);
+    ledger.nodes.push_back(nodes_[n]);
+    ledger.senders.push_back(senders_[n]);
+    ledger.heard_bytes.push_back(heard_bytes_[k]);
+    ledger.overheard_count.push_back(overheard_count_[k]);
     for (std::size_t t = 0; t < type_count_; ++t) {
-      const TxCounter sent = tile.tx_[t * tx_stride + n];
-      tx_[t * tx_stride + n] = sent;
-      totals_[t].tx_count += sent.count;
-      totals_[t].tx_bytes += sent.bytes;
-      rx_count_[t * rx_stride + k] = tile.rx_count_[t * rx_stride + k];
-      rx_bytes_[t * rx_stride + k] = tile.rx_bytes_[t * rx_stride + k];
-      totals_[t].rx_count += rx_count_[t * rx_stride + k];
-      totals_[t].rx_bytes += rx_bytes_[t * rx_stride + k];
+      ledger.tx[t * width + i] = tx_[t * tx_stride + n];
+      ledger.rx_count[t * width + i] = rx_count_[t * rx_stride + k];
+      ledger.rx_bytes[t * width + i] = rx_bytes_[t * rx_stride + k];
     }
   }
-  MASNET_ASSERT(n_nodes == tx_stride, "the index covers every node");
-  std::erase(siblings_, &tile);  // its share is in the totals now
-  total_tx_j_.add(tile.static_tx_j_);
-  total_heard_bytes_ += tile.static_heard_bytes_;
-  for (std::size_t t = 0; t < kMaxMessageTypes; ++t) {
-    tx_j_by_type_[t].add(tile.static_tx_j_by_type_[t]);
-    heard_bytes_by_type_[t] += tile.static_heard_by_type_[t];
+  return ledger;
+}
+
+void Radio::absorb_tile(const TileLedger& tile) {
+  const std::size_t width = tile.end_slot - tile.first_slot;
+  MASNET_ASSERT(tiled_ && tile.first_slot <= tile.end_slot &&
+                    tile.end_slot <= static_slots().size() && tile.nodes.size() == width &&
+                    tile.senders.size() == width && tile.heard_bytes.size() == width &&
+                    tile.overheard_count.size() == width && tile.tx.size() == type_count_ * width &&
+                    tile.rx_count.size() == type_count_ * width &&
+                    tile.rx_bytes.size() == type_count_ * width,
+                "a ledger of another tile of this run");
+  materialize();
+  const std::vector<NodeId>& slots = static_slots();
+  const std::size_t tx_stride = tx_.size() / type_count_, rx_stride = heard_bytes_.size();
+  MASNET_ASSERT(nodes_.size() == tx_stride, "the index covers every node");
+  for (std::size_t i = 0; i < width; ++i) {
+    const std::size_t k = tile.first_slot + i, n = sim::index(slots[k]);
+    nodes_[n] = tile.nodes[i];
+    senders_[n] = tile.senders[i];
+    heard_bytes_[k] = tile.heard_bytes[i];
+    overheard_count_[k] = tile.overheard_count[i];
+    for (std::size_t t = 0; t < type_count_; ++t) {
+      tx_[t * tx_stride + n] = tile.tx[t * width + i];
+      rx_count_[t * rx_stride + k] = tile.rx_count[t * width + i];
+      rx_bytes_[t * rx_stride + k] = tile.rx_bytes[t * width + i];
+    }
   }
+  // The tile's share of the totals, as it booked it: the sums of the counters above.
+  const TileTotals& share = tile.totals;
+  total_tx_j_.add(share.tx_j);
+  total_heard_bytes_ += share.heard_bytes;
+  for (std::size_t t = 0; t < kMaxMessageTypes; ++t) {
+    tx_j_by_type_[t].add(share.tx_j_by_type[t]);
+    heard_bytes_by_type_[t] += share.heard_by_type[t];
+    totals_[t].tx_count += share.counters[t].tx_count;
+    totals_[t].tx_bytes += share.counters[t].tx_bytes;
+    totals_[t].rx_count += share.counters[t].rx_count;
+    totals_[t].rx_bytes += share.counters[t].rx_bytes;
+  }
+  sibling_shares_.clear();  // the shares are in the totals now
   // This radio now holds the absorbed tile's slots too (absorbing tiles in slot order keeps
   // them one range).
-  owned_first_ = std::min(owned_first_, tile.owned_first_);
-  owned_end_ = std::max(owned_end_, tile.owned_end_);
+  owned_first_ = std::min(owned_first_, tile.first_slot);
+  owned_end_ = std::max(owned_end_, tile.end_slot);
 }
 
 }  // namespace masnet::net

@@ -4,10 +4,9 @@
 // the next window starts — the earliest pending event of any rank — and swap what crossed.
 // Both are collective calls: every rank makes the same calls in the same order.
 #include <cstddef>
-#include <cstring>
-#include <type_traits>
 #include <vector>
 
+#include "sim/plain_bytes.hpp"  // what the exchange carries
 #include "sim/time.hpp"
 
 namespace masnet::ranks {
@@ -37,22 +36,5 @@ class RankExchange {
   std::vector<std::vector<std::byte>> inbox_;
   std::size_t bytes_sent_ = 0;
 };
-
-/// Plain records (trivially copyable: times, keys, ids, values) as bytes, and back.
-template <class Record>
-void append_records(std::vector<std::byte>& bytes, const Record* records, std::size_t count) {
-  static_assert(std::is_trivially_copyable_v<Record>);
-  const std::size_t at = bytes.size();
-  bytes.resize(at + count * sizeof(Record));
-  if (count > 0) std::memcpy(bytes.data() + at, records, count * sizeof(Record));
-}
-
-template <class Record>
-std::vector<Record> records_from(const std::vector<std::byte>& bytes) {
-  static_assert(std::is_trivially_copyable_v<Record>);
-  std::vector<Record> records(bytes.size() / sizeof(Record));
-  if (!records.empty()) std::memcpy(records.data(), bytes.data(), records.size() * sizeof(Record));
-  return records;
-}
 
 }  // namespace masnet::ranks

@@ -13,6 +13,7 @@
 
 #include "scenarios/cli/command_output.hpp"
 #include "scenarios/cli/logging_setup.hpp"
+#include "scenarios/cli/mpi_scope.hpp"
 #include "scenarios/loader/scenario.hpp"
 #include "scenarios/output/output_file.hpp"
 #include "scenarios/report/report.hpp"
@@ -114,41 +115,50 @@ CLI::App* add_run_subcommand(CLI::App& app, RunArgs& args) {
 }
 
 int run_run_command(const RunArgs& args) {
+  // Started by mpirun with N ranks: one run in N tiles, one per rank; only the first speaks and
+  // writes (docs/decisions/0012-partitioned-runs.md).
+  MpiScope mpi(true);
+  const bool root = mpi.rank() == 0, over_ranks = mpi.size() > 1;
   std::optional<std::uint64_t> seed;
   if (!args.seed.empty() || args.seed_given) {
     Diagnostic problem;
     seed = parse_seed(args.seed, problem);
-    if (!seed) return print_diagnostics({problem});
+    if (!seed) return root ? print_diagnostics({problem}) : kBadInput;
   }
   std::vector<std::string> sets = args.sets;
   if (args.baseline) sets.push_back("control.baseline=true");  // same as the scenario key
   LoadResult loaded = load_scenario(args.scenario, sets, seed);
-  if (!loaded.scenario) return print_diagnostics(loaded.diagnostics);
-  print_warnings(loaded.warnings);
+  if (!loaded.scenario) return root ? print_diagnostics(loaded.diagnostics) : kBadInput;
+  if (root) print_warnings(loaded.warnings);
   const ScenarioDef& def = *loaded.scenario;
-  if (std::string problem = tiles_problem(def, args.tiles); !problem.empty()) {
-    std::fprintf(stderr, "masnet run: --tiles %u: %s\n", args.tiles, problem.c_str());
+  const auto ranks = static_cast<unsigned>(mpi.size());
+  if (over_ranks && args.tiles != 1 && args.tiles != ranks) {
+    if (root)
+      std::fprintf(stderr,
+                   "masnet run: --tiles %u under %u MPI ranks: each rank runs one tile (give "
+                   "--tiles %u or leave it out)\n",
+                   args.tiles, ranks, ranks);
     return kBadInput;
   }
-  if (args.tiles > 1 && args.serve.serve) {
-    std::fprintf(stderr, "masnet run: --tiles and --serve cannot be used together\n");
+  const unsigned wanted_tiles = over_ranks ? ranks : args.tiles;
+  if (std::string problem = tiles_problem(def, wanted_tiles); !problem.empty()) {
+    if (root) std::fprintf(stderr, "masnet run: --tiles %u: %s\n", wanted_tiles, problem.c_str());
+    return kBadInput;
+  }
+  if (wanted_tiles > 1 && args.serve.serve) {
+    if (root) std::fprintf(stderr, "masnet run: --tiles and --serve cannot be used together\n");
     return kBadInput;
   }
   const std::string out =
       args.out.empty() ? "runs/" + def.name + "-seed" + std::to_string(def.seed) : args.out;
-  // Refuse before simulating: a long run must not end in "cannot write".
-  if (std::string problem = check_run_directory(out, run_key(def), args.force); !problem.empty()) {
-    std::fprintf(stderr, "masnet run: %s\n", problem.c_str());
-    return kBadInput;
-  }
+  // Refuse before simulating: a long run must not end in "cannot write". Over ranks the first
+  // checks and every rank stops if it refuses.
   Logging logging;
-  if (std::string problem = set_up_run_logging(args, out, logging); !problem.empty()) {
-    std::fprintf(stderr, "masnet run: %s\n", problem.c_str());
-    return kBadInput;
-  }
-  // A lone run may use a second core for the radio's overhearing bookkeeping (the same results;
-  // sweeps keep their cores for whole runs) when the process may run on two processors: pinned
-  // to one (taskset, a cpuset), the two threads would only take turns.
+  std::string refused;
+  if (root) refused = check_run_directory(out, run_key(def), args.force);
+  if (root && refused.empty()) refused = set_up_run_logging(args, out, logging);
+  if (!refused.empty()) std::fprintf(stderr, "masnet run: %s\n", refused.c_str());
+  if (!mpi.all(refused.empty())) return kBadInput;
   // Bound before anything is simulated: a taken port must not cost a run.
   std::unique_ptr<LiveSession> live;
   if (args.serve.serve) {
@@ -156,19 +166,29 @@ int run_run_command(const RunArgs& args) {
     live = start_live_session(args.serve, exit_code);
     if (!live) return exit_code;
   }
+  // A lone run may use a second core for the radio's overhearing bookkeeping (the same results;
+  // sweeps keep their cores for whole runs) when the process may run on two processors: pinned
+  // to one (taskset, a cpuset), the two threads would only take turns.
   ScenarioDef run_def = def;
   run_def.world.radio.overhearing_thread = overhearing_thread_wanted();
   // With one allowed processor the tiles would only take turns on it, each running every robot:
-  // the run in one piece gives the same outputs sooner.
-  const unsigned tiles = masnet::sim::allowed_cpu_count() >= 2 ? args.tiles : 1;
-  Run run(run_def, tiles);
-  {
+  // the run in one piece gives the same outputs sooner (ranks bring their own processors).
+  const unsigned tiles = over_ranks || masnet::sim::allowed_cpu_count() >= 2 ? wanted_tiles : 1;
+  const std::unique_ptr<TileLink> link = mpi.tile_link();
+  Run run(run_def, tiles, 0, link.get());
+  try {
     // Log lines on the terminal would break into the progress line: one or the other.
-    ProgressBar bar(def.duration_s,
-                    !args.quiet && !logging.shows_on_terminal && ProgressBar::stderr_is_terminal());
+    ProgressBar bar(def.duration_s, root && !args.quiet && !logging.shows_on_terminal &&
+                                        ProgressBar::stderr_is_terminal());
     run.execute([&](double t, std::uint64_t events) { bar.update(t, events); },
                 live ? &live->watcher() : nullptr);
+  } catch (const std::exception& e) {
+    // The other ranks wait in the window loop for this one: end them all.
+    if (!over_ranks) throw;
+    std::fprintf(stderr, "masnet run: rank %d: %s\n", mpi.rank(), e.what());
+    mpi.abort(kInternalError);
   }
+  if (!root) return 0;
   // Figures and report are drawn into the staging folder too, so the published directory is
   // complete or absent. A drawing failure that is not a write failure keeps the run's data
   // (published without figures) and `masnet render` can finish the job.

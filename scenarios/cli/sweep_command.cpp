@@ -12,6 +12,7 @@
 #include <unistd.h>
 #include <CLI/CLI.hpp>
 
+#include "scenarios/cli/mpi_scope.hpp"
 #include "scenarios/run/run_directory.hpp"
 #include "scenarios/sweep/sweep.hpp"
 #include "sim/cpus.hpp"
@@ -25,75 +26,6 @@ namespace {
 
 constexpr int kBadInput = 2;
 constexpr int kInternalError = 1;
-
-// Started by mpirun, mpiexec or srun? Only then is MPI initialised: a plain `masnet sweep`
-// never touches MPI.
-bool launched_by_mpi() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
-    if (const char* v = std::getenv(name); v && *v) return true;
-  if (const char* tasks = std::getenv("SLURM_STEP_NUM_TASKS"); tasks && std::atoi(tasks) > 1)
-    return true;
-  return false;
-}
-
-// MPI_Init on entry when launched by MPI, MPI_Finalize on exit.
-class MpiScope {
- public:
-  explicit MpiScope(bool allowed) {
-#ifdef MASNET_HAVE_MPI
-    if (!allowed || !launched_by_mpi()) return;
-    int initialised = 0;
-    MPI_Initialized(&initialised);
-    if (!initialised) {
-      int provided = 0;
-      // Worker threads never call MPI: only the main thread does (FUNNELED).
-      MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
-      owned_ = true;
-    }
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-    MPI_Comm_size(MPI_COMM_WORLD, &size_);
-#else
-    (void)allowed;
-#endif
-  }
-  ~MpiScope() {
-#ifdef MASNET_HAVE_MPI
-    if (owned_) MPI_Finalize();
-#endif
-  }
-  MpiScope(const MpiScope&) = delete;
-  MpiScope& operator=(const MpiScope&) = delete;
-  int rank() const {
-    return rank_;
-  }
-  int size() const {
-    return size_;
-  }
-  /// Whether every rank runs on this host (collective: every rank must call it).
-  bool all_on_one_host() const {
-#ifdef MASNET_HAVE_MPI
-    if (size_ <= 1) return true;
-    MPI_Comm node;
-    MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
-    int node_size = 0;
-    MPI_Comm_size(node, &node_size);
-    MPI_Comm_free(&node);
-    return node_size == size_;
-#else
-    return true;
-#endif
-  }
-  [[noreturn]] void abort(int code) {
-#ifdef MASNET_HAVE_MPI
-    if (size_ > 1) MPI_Abort(MPI_COMM_WORLD, code);
-#endif
-    std::exit(code);
-  }
-
- private:
-  int rank_ = 0, size_ = 1;
-  bool owned_ = false;
-};
 
 void print_counts(const SweepCounts& c, const SweepOptions& options, bool quiet) {
   if (!quiet) {

@@ -21,7 +21,7 @@ std::unique_ptr<sim::Simulator> make_simulator(const ScenarioDef& def) {
 }
 }  // namespace
 
-Run::Run(ScenarioDef def, unsigned tiles, unsigned threads)
+Run::Run(ScenarioDef def, unsigned tiles, unsigned threads, TileLink* link)
     : def_(std::move(def)),
       simulator_(make_simulator(def_)),
       world_(std::make_unique<agents::World>(*simulator_, def_.world)),
@@ -31,7 +31,7 @@ Run::Run(ScenarioDef def, unsigned tiles, unsigned threads)
     MASNET_ASSERT(tiles_problem(def_, tiles).empty(), "a scenario the tiles run");
     tiles_ = std::make_unique<RunTiles>(
         *simulator_, *world_, def_.world, tiles,
-        threads > 0 ? threads : static_cast<unsigned>(sim::allowed_cpu_count()));
+        threads > 0 ? threads : static_cast<unsigned>(sim::allowed_cpu_count()), link);
   }
   if (world_->group_count() > 0) formation_ = std::make_unique<FormationRecorder>(*world_);
 }

@@ -23,8 +23,9 @@ using ProgressFn = std::function<void(double t_s, std::uint64_t events)>;
 class Run {
  public:
   /// `tiles` > 1 cuts the run into that many tiles by space (run_tiles.hpp; `tiles_problem`
-  /// must be empty) on `threads` threads (0: one per allowed processor, at most one per tile).
-  explicit Run(ScenarioDef def, unsigned tiles = 1, unsigned threads = 0);
+  /// must be empty) on `threads` threads (0: one per allowed processor, at most one per tile);
+  /// with a `link`, over its ranks instead, one tile each (the first rank's run is the whole).
+  explicit Run(ScenarioDef def, unsigned tiles = 1, unsigned threads = 0, TileLink* link = nullptr);
   ~Run();
 
   /// Simulates the whole duration; `watcher` (may be null) sees it as it happens.

@@ -4,6 +4,8 @@
 
 #include "protocols/ground_truth.hpp"
 #include "protocols/registry.hpp"
+#include "scenarios/run/tile_bytes.hpp"
+#include "sim/plain_bytes.hpp"
 
 namespace masnet::scenarios {
 
@@ -35,11 +37,16 @@ std::string tiles_problem(const ScenarioDef& def, unsigned tiles) {
 }
 
 RunTiles::RunTiles(sim::Simulator& simulator, agents::World& world, const agents::WorldDef& def,
-                   unsigned tiles, unsigned threads)
-    : lookahead_(sim::seconds(def.radio.latency_s)), threads_(std::clamp(threads, 1u, tiles)) {
+                   unsigned tiles, unsigned threads, TileLink* link)
+    : link_(link),
+      tiles_(tiles),
+      first_tile_(link ? link->rank() : 0),
+      lookahead_(sim::seconds(def.radio.latency_s)),
+      threads_(link ? 1 : std::clamp(threads, 1u, tiles)) {
+  MASNET_ASSERT(!link || (link->size() == tiles && link->rank() < tiles), "one tile per rank");
   simulators_.push_back(&simulator);
   worlds_.push_back(&world);
-  for (unsigned k = 1; k < tiles; ++k) {
+  for (unsigned k = 1; k < tiles && !link; ++k) {
     Tile tile;
     tile.simulator = std::make_unique<sim::Simulator>();
     tile.simulator->order_ties_by_origin();
@@ -50,48 +57,65 @@ RunTiles::RunTiles(sim::Simulator& simulator, agents::World& world, const agents
   }
   // Bands of equal sensor count in the radio's slot order: rows of a sensor grid.
   const auto slots = static_cast<std::uint64_t>(world.radio().static_slots().size());
-  for (unsigned k = 0; k < tiles; ++k)
-    worlds_[k]->own_sensor_slots(static_cast<std::uint32_t>(slots * k / tiles),
-                                 static_cast<std::uint32_t>(slots * (k + 1) / tiles));
-  // The recorder samples tile 0 between windows: its radio's totals add the others' shares.
-  std::vector<const net::Radio*> siblings;
-  for (std::size_t k = 1; k < worlds_.size(); ++k)
-    siblings.push_back(&worlds_[k]->radio());
-  world.radio().set_sibling_tiles(std::move(siblings));
+  for (std::size_t part = 0; part < worlds_.size(); ++part) {
+    const std::uint64_t k = first_tile_ + part;
+    worlds_[part]->own_sensor_slots(static_cast<std::uint32_t>(slots * k / tiles),
+                                    static_cast<std::uint32_t>(slots * (k + 1) / tiles));
+  }
+  published_.resize(tiles_);
+  if (link_) rank_outbox_.resize(tiles_);
 }
 
 RunTiles::~RunTiles() = default;
 
 void RunTiles::start() {
-  for (std::size_t k = 1; k < worlds_.size(); ++k)
-    worlds_[k]->start();
-  published_.resize(worlds_.size());
+  for (std::size_t part = 1; part < worlds_.size(); ++part)
+    worlds_[part]->start();
   windowed_ = std::make_unique<sim::WindowedRun>(simulators_, lookahead_, threads_);
-  windowed_->set_prepare([this](std::size_t tile) { take_in(tile); });
+  windowed_->set_prepare([this](std::size_t part) { take_in(part); });
 }
 
 void RunTiles::run_until(sim::Time limit) {
   // A window must not start after a published frame's arrival: it counts as pending.
   windowed_->run_until(
       limit, [this](sim::Time) { exchange(); },
-      [this](sim::Time earliest_here) { return std::min(earliest_here, published_earliest_); });
+      [this](sim::Time earliest_here) {
+        const sim::Time earliest = std::min(earliest_here, published_earliest_);
+        return link_ ? link_->earliest(earliest) : earliest;
+      });
   take_in_all();
+  share_totals();
 }
 
 void RunTiles::exchange() {
   // Every tile has taken in what was published before this window: publish this window's.
-  published_earliest_ = sim::kTimeMax;
-  for (std::size_t k = 0; k < worlds_.size(); ++k) {
-    published_[k].clear();
-    std::swap(published_[k], worlds_[k]->radio().outbox());
-    for (const net::FrameRecord& record : published_[k])
-      published_earliest_ = std::min(published_earliest_, record.arrival);
+  for (std::size_t part = 0; part < worlds_.size(); ++part) {
+    published_[first_tile_ + part].clear();
+    std::swap(published_[first_tile_ + part], worlds_[part]->radio().outbox());
   }
+  if (link_) {
+    // This rank's frames to every other rank; theirs in.
+    std::vector<std::byte> mine;
+    append_frames(mine, published_[first_tile_]);
+    for (std::size_t r = 0; r < tiles_; ++r)
+      rank_outbox_[r] = r == first_tile_ ? std::vector<std::byte>{} : mine;
+    const std::vector<std::vector<std::byte>>& inbox = link_->exchange(rank_outbox_);
+    for (std::size_t r = 0; r < tiles_; ++r)
+      if (r != first_tile_) {
+        published_[r].clear();
+        read_frames(inbox[r], published_[r]);
+      }
+  }
+  published_earliest_ = sim::kTimeMax;
+  for (const std::vector<net::FrameRecord>& frames : published_)
+    for (const net::FrameRecord& record : frames)
+      published_earliest_ = std::min(published_earliest_, record.arrival);
 }
 
-void RunTiles::take_in(std::size_t tile) {
+void RunTiles::take_in(std::size_t part) {
   // In tile order, each tile's frames in its send order: the same on any number of threads.
-  net::Radio& radio = worlds_[tile]->radio();
+  const std::size_t tile = first_tile_ + part;
+  net::Radio& radio = worlds_[part]->radio();
   for (std::size_t from = 0; from < published_.size(); ++from)
     if (from != tile)
       for (const net::FrameRecord& record : published_[from])
@@ -99,16 +123,38 @@ void RunTiles::take_in(std::size_t tile) {
 }
 
 void RunTiles::take_in_all() {
-  for (std::size_t k = 0; k < worlds_.size(); ++k)
-    take_in(k);
+  for (std::size_t part = 0; part < worlds_.size(); ++part)
+    take_in(part);
   for (std::vector<net::FrameRecord>& frames : published_)
     frames.clear();
   published_earliest_ = sim::kTimeMax;
 }
 
+void RunTiles::share_totals() {
+  // The recorder samples tile 0 between chunks: its radio's totals add the others' shares.
+  std::vector<net::TileTotals> shares;
+  if (!link_) {
+    for (std::size_t part = 1; part < worlds_.size(); ++part)
+      shares.push_back(worlds_[part]->radio().tile_totals());
+  } else {
+    std::vector<std::byte> mine;
+    sim::append_records(mine, &worlds_[0]->radio().tile_totals(), 1);
+    for (std::size_t r = 0; r < tiles_; ++r)
+      rank_outbox_[r] = r != first_tile_ && r == 0 ? mine : std::vector<std::byte>{};
+    const std::vector<std::vector<std::byte>>& inbox = link_->exchange(rank_outbox_);
+    for (std::size_t r = 1; r < tiles_ && first_tile_ == 0; ++r)
+      shares.push_back(sim::records_from<net::TileTotals>(inbox[r]).at(0));
+  }
+  worlds_[0]->radio().set_sibling_shares(std::move(shares));
+}
+
 void RunTiles::absorb() {
   if (absorbed_) return;
   absorbed_ = true;
+  if (link_) {
+    absorb_ranks();
+    return;
+  }
   // Origin 0 is the world, origin n + 1 node n: the world's and the robots' streams are the same
   // in every tile, a sensor's is in the tile that owns it.
   std::vector<std::vector<sim::Fingerprint>> held;
@@ -127,11 +173,41 @@ void RunTiles::absorb() {
       }
   fingerprint_ = sim::combine_origin_streams(streams);
   for (std::size_t k = 1; k < worlds_.size(); ++k)
-    worlds_[0]->absorb_tile(*worlds_[k]);
+    worlds_[0]->absorb_tile(worlds_[k]->tile_counts(), worlds_[k]->radio().tile_ledger());
+}
+
+void RunTiles::absorb_ranks() {
+  // Every other rank sends the first its tile's end: ledger, counts and its sensors' streams.
+  agents::World& world = *worlds_[0];
+  std::vector<sim::Fingerprint> streams = simulators_[0]->origin_streams();
+  if (first_tile_ != 0) {
+    TileEnd end{world.tile_counts(), world.radio().tile_ledger(), {}, simulators_[0]->events_run()};
+    const std::vector<sim::NodeId>& slots = world.radio().static_slots();
+    for (std::uint32_t k = end.ledger.first_slot; k < end.ledger.end_slot; ++k) {
+      // Untouched ones too: the first rank's entry for a sensor it does not own is not its own.
+      const std::size_t origin = sim::index(slots[k]) + 1;
+      end.streams.push_back({static_cast<std::uint32_t>(origin),
+                             origin < streams.size() ? streams[origin] : sim::Fingerprint{}});
+    }
+    rank_outbox_[0] = tile_end_bytes(end);
+  }
+  const std::vector<std::vector<std::byte>>& inbox = link_->exchange(rank_outbox_);
+  rank_outbox_[0].clear();
+  if (first_tile_ != 0) return;
+  for (std::size_t r = 1; r < tiles_; ++r) {
+    const TileEnd end = tile_end_from(inbox[r]);
+    for (const TileEnd::Stream& s : end.streams) {
+      if (s.origin >= streams.size()) streams.resize(s.origin + 1);
+      streams[s.origin] = s.stream;
+    }
+    other_ranks_events_ += end.events;
+    world.absorb_tile(end.counts, end.ledger);
+  }
+  fingerprint_ = sim::combine_origin_streams(streams);
 }
 
 std::uint64_t RunTiles::events() const {
-  std::uint64_t events = 0;
+  std::uint64_t events = other_ranks_events_;
   for (const sim::Simulator* s : simulators_)
     events += s->events_run();
   return events;

@@ -4,7 +4,9 @@
 // every robot; the tiles advance together in conservative windows of the radio's latency on a
 // pool of threads, and the frames their sensors send cross to the other tiles between windows.
 // At the end the other tiles are absorbed into the first, whose world then reads as the whole
-// run's: every output and the fingerprint are those of the run in one piece.
+// run's: every output and the fingerprint are those of the run in one piece. Over MPI ranks
+// (a TileLink), each rank runs one tile and the frames and ledgers cross as bytes.
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -20,12 +22,28 @@ namespace masnet::scenarios {
 /// Why `def` cannot run in `tiles` tiles (empty: it can).
 std::string tiles_problem(const ScenarioDef& def, unsigned tiles);
 
+/// The processes of a run cut over MPI ranks, one tile each (the `masnet` program makes one over
+/// ranks::RankExchange). Both calls are collective: every rank makes them in the same order.
+class TileLink {
+ public:
+  virtual ~TileLink() = default;
+  virtual unsigned rank() const = 0;
+  virtual unsigned size() const = 0;
+  /// The earliest of every rank's `earliest_here`.
+  virtual sim::Time earliest(sim::Time earliest_here) = 0;
+  /// Sends `outbox[r]` to rank r; returns what each rank sent here, in rank order.
+  virtual const std::vector<std::vector<std::byte>>& exchange(
+      const std::vector<std::vector<std::byte>>& outbox) = 0;
+};
+
 class RunTiles {
  public:
   /// Tile 0 is the run's own `simulator` and `world`; makes the others from `def` and gives each
   /// tile its band of sensors. `threads`: at most one per tile and per allowed processor.
+  /// With a `link`: `tiles` is its size, and this process runs tile `link->rank()` alone, in
+  /// `simulator` and `world`; after absorb() the first rank's world reads as the whole run's.
   RunTiles(sim::Simulator& simulator, agents::World& world, const agents::WorldDef& def,
-           unsigned tiles, unsigned threads);
+           unsigned tiles, unsigned threads, TileLink* link = nullptr);
   ~RunTiles();
   RunTiles(const RunTiles&) = delete;
   RunTiles& operator=(const RunTiles&) = delete;
@@ -38,8 +56,9 @@ class RunTiles {
   void absorb();
   /// Each origin's stream from the tile that holds it (after absorb()).
   const sim::Fingerprint& fingerprint() const { return fingerprint_; }
-  /// Every tile's kernel events: a cost, like the wall time — a frame that reaches two tiles is
-  /// delivered by an event in each.
+  /// Every tile's kernel events (over ranks: this rank's, and after absorb() on the first rank
+  /// every rank's): a cost, like the wall time — a frame that reaches two tiles is delivered by
+  /// an event in each.
   std::uint64_t events() const;
   std::uint64_t windows() const { return windowed_ ? windowed_->windows() : 0; }
 
@@ -49,18 +68,25 @@ class RunTiles {
     std::unique_ptr<agents::World> world;
   };
   void exchange();
-  /// Books and delivers into `tile` the frames the other tiles sent in the last window.
-  void take_in(std::size_t tile);
-  /// Takes every published frame in (between chunks: observers see every tile's bookings).
+  /// Books and delivers into local tile `part` the frames the other tiles sent in the last window.
+  void take_in(std::size_t part);
+  /// Takes every published frame in (between chunks: observers see every tile's bookings), and
+  /// hands tile 0 the others' shares of the totals.
   void take_in_all();
+  void share_totals();
+  void absorb_ranks();
 
-  std::vector<sim::Simulator*> simulators_;  // every tile's, tile 0 first
+  TileLink* link_ = nullptr;
+  std::size_t tiles_ = 1, first_tile_ = 0;   // all tiles, and the first one this process runs
+  std::vector<sim::Simulator*> simulators_;  // this process's tiles', in tile order
   std::vector<agents::World*> worlds_;
   std::vector<Tile> others_;  // tiles 1 ...
   std::unique_ptr<sim::WindowedRun> windowed_;
   // Each tile's frames of the last window, read by every other tile at the start of the next
   // (each on its own thread) while it sends new ones into its radio's outbox.
-  std::vector<std::vector<net::FrameRecord>> published_;
+  std::vector<std::vector<net::FrameRecord>> published_;  // [tile]
+  std::vector<std::vector<std::byte>> rank_outbox_;       // [rank], over ranks
+  std::uint64_t other_ranks_events_ = 0;
   sim::Time published_earliest_ = sim::kTimeMax;  // the earliest arrival among them
   sim::Duration lookahead_{};
   unsigned threads_ = 1;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "net/radio.hpp"
+#include "net/tile_ledger.hpp"
 #include "sim/windowed_run.hpp"
 
 using namespace masnet;
@@ -194,7 +195,7 @@ void check_tiles_equal_whole(const net::RadioParams& params) {
       CHECK(sim::combine_origin_streams(streams).value() == whole.sim.fingerprint().value());
       net::Radio& merged = *tiled.tiles[0]->radio;
       for (std::uint32_t i = 1; i < count; ++i)
-        merged.absorb_tile(*tiled.tiles[i]->radio);
+        merged.absorb_tile(tiled.tiles[i]->radio->tile_ledger());
       check_same_ledger(*whole.radio, merged);
     }
   }

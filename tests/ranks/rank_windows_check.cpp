@@ -53,13 +53,12 @@ int run_over_ranks(ranks::RankExchange& ex, Watch watch) {
             for (int r = 0; r < count; ++r) {
               const bool runs = (m.to >= first_node(r, count) && m.to < first_node(r + 1, count)) ||
                                 part.everywhere(m.to);
-              if (r != me && runs)
-                ranks::append_records(outbox[static_cast<std::size_t>(r)], &m, 1);
+              if (r != me && runs) sim::append_records(outbox[static_cast<std::size_t>(r)], &m, 1);
             }
           }
           part.outbox.clear();
           for (const std::vector<std::byte>& from : ex.exchange(outbox))
-            for (const Message& m : ranks::records_from<Message>(from))
+            for (const Message& m : sim::records_from<Message>(from))
               part.receive(m);
         },
         [&](Time earliest_here) { return ex.earliest(earliest_here); });
@@ -76,11 +75,11 @@ int run_over_ranks(ranks::RankExchange& ex, Watch watch) {
       streams.push_back(StreamValue{origin, own[origin].value()});
   for (auto& box : outbox)
     box.clear();
-  ranks::append_records(outbox[0], held.data(), held.size());
+  sim::append_records(outbox[0], held.data(), held.size());
   const std::vector<std::vector<std::byte>> logs = ex.exchange(outbox);
   for (auto& box : outbox)
     box.clear();
-  ranks::append_records(outbox[0], streams.data(), streams.size());
+  sim::append_records(outbox[0], streams.data(), streams.size());
   const std::vector<std::vector<std::byte>> stream_bytes = ex.exchange(outbox);
   int bad = too_early + part.wrong_owner + (part.sim.now() == end ? 0 : 1);
   if (me != 0) return bad;
@@ -90,10 +89,10 @@ int run_over_ranks(ranks::RankExchange& ex, Watch watch) {
   for (const StreamValue& s : streams)
     by_origin[s.origin] = Fingerprint::resumed(s.value);
   for (int r = 1; r < count; ++r) {
-    for (const Executed& e : ranks::records_from<Executed>(logs[static_cast<std::size_t>(r)]))
+    for (const Executed& e : sim::records_from<Executed>(logs[static_cast<std::size_t>(r)]))
       merged.push_back(e);
     for (const StreamValue& s :
-         ranks::records_from<StreamValue>(stream_bytes[static_cast<std::size_t>(r)]))
+         sim::records_from<StreamValue>(stream_bytes[static_cast<std::size_t>(r)]))
       by_origin[s.origin] = Fingerprint::resumed(s.value);
   }
   std::sort(merged.begin(), merged.end(), in_total_order);

@@ -1,11 +1,16 @@
 // A run cut into tiles by space (scenarios/run/run_tiles.hpp, docs/decisions/0012-partitioned-
 // runs.md): bands of sensors side by side in conservative windows, every robot in every tile.
 // Every output file and both fingerprints equal the run in one piece, for 2 and 3 tiles on one
-// and two threads; what the tiles cannot run yet is refused with the reason.
+// and two threads, and over ranks (threads standing in for MPI ranks: every frame, share and
+// ledger crosses as bytes); what the tiles cannot run yet is refused with the reason.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <barrier>
 #include <filesystem>
+#include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "../text_files.hpp"
@@ -30,16 +35,61 @@ struct Outcome {
   std::vector<std::string> files;
 };
 
-Outcome run_in(const ScenarioDef& def, unsigned tiles, unsigned threads) {
-  Run run(def, tiles, threads);
+// Ranks as threads of this process: the collective calls meet at a barrier.
+class ThreadRanks {
+ public:
+  explicit ThreadRanks(unsigned ranks) : meet_(ranks), earliest_(ranks), outboxes_(ranks) {
+    for (unsigned r = 0; r < ranks; ++r)
+      links_.push_back(std::make_unique<Link>(*this, r));
+  }
+  TileLink& link(unsigned rank) { return *links_[rank]; }
+
+ private:
+  class Link final : public TileLink {
+   public:
+    Link(ThreadRanks& all, unsigned rank) : all_(all), rank_(rank) {}
+    unsigned rank() const override { return rank_; }
+    unsigned size() const override { return static_cast<unsigned>(all_.links_.size()); }
+    sim::Time earliest(sim::Time earliest_here) override {
+      all_.earliest_[rank_] = earliest_here;
+      all_.meet_.arrive_and_wait();
+      const sim::Time earliest = *std::min_element(all_.earliest_.begin(), all_.earliest_.end());
+      all_.meet_.arrive_and_wait();
+      return earliest;
+    }
+    const std::vector<std::vector<std::byte>>& exchange(
+        const std::vector<std::vector<std::byte>>& outbox) override {
+      all_.outboxes_[rank_] = &outbox;
+      all_.meet_.arrive_and_wait();
+      inbox_.assign(size(), {});
+      for (unsigned from = 0; from < size(); ++from)
+        if (from != rank_) inbox_[from] = (*all_.outboxes_[from])[rank_];
+      all_.meet_.arrive_and_wait();
+      return inbox_;
+    }
+
+   private:
+    ThreadRanks& all_;
+    unsigned rank_;
+    std::vector<std::vector<std::byte>> inbox_;
+  };
+  std::barrier<> meet_;
+  std::vector<sim::Time> earliest_;
+  std::vector<const std::vector<std::vector<std::byte>>*> outboxes_;
+  std::vector<std::unique_ptr<Link>> links_;
+};
+
+Outcome run_in(const ScenarioDef& def, unsigned tiles, unsigned threads, TileLink* link = nullptr) {
+  Run run(def, tiles, threads, link);
   run.execute();
   Outcome o{run.fingerprint(), run.traffic_fingerprint(), run.summary(), {}};
   // What says how the run was made (its cost), not what happened in it.
   o.summary.erase("wall_time_s");
   o.summary.erase("events");
   const fs::path dir =
-      fs::temp_directory_path() / ("masnet-test-tiles-" + std::to_string(::getpid()) + "-" +
-                                   std::to_string(tiles) + "-" + std::to_string(threads));
+      fs::temp_directory_path() /
+      ("masnet-test-tiles-" + std::to_string(::getpid()) + "-" + std::to_string(tiles) + "-" +
+       std::to_string(threads) + (link ? "-ranks" : ""));
   fs::remove_all(dir);
   fs::create_directories(dir);
   run.write_files(dir.string());
@@ -50,11 +100,27 @@ Outcome run_in(const ScenarioDef& def, unsigned tiles, unsigned threads) {
   return o;
 }
 
+// The first rank's outcome; the others run their tiles on threads of their own.
+Outcome run_over_ranks(const ScenarioDef& def, unsigned ranks) {
+  ThreadRanks links(ranks);
+  std::vector<std::unique_ptr<Run>> others;
+  for (unsigned r = 1; r < ranks; ++r)
+    others.push_back(std::make_unique<Run>(def, ranks, 1, &links.link(r)));
+  std::vector<std::thread> threads;
+  for (auto& run : others)
+    threads.emplace_back([&run] { run->execute(); });
+  Outcome first = run_in(def, ranks, 1, &links.link(0));
+  for (std::thread& t : threads)
+    t.join();
+  return first;
+}
+
 void check_tiles_equal_whole(const ScenarioDef& def) {
   const Outcome whole = run_in(def, 1, 1);
-  for (const auto& [tiles, threads] : {std::pair{2u, 1u}, std::pair{3u, 2u}}) {
-    INFO(tiles << " tiles on " << threads << " threads");
-    const Outcome cut = run_in(def, tiles, threads);
+  for (const auto& [tiles, threads] : {std::pair{2u, 1u}, std::pair{3u, 2u}, std::pair{2u, 0u}}) {
+    // threads 0: over 2 ranks
+    INFO(tiles << " tiles on " << threads << " threads (0: ranks)");
+    const Outcome cut = threads > 0 ? run_in(def, tiles, threads) : run_over_ranks(def, tiles);
     CHECK(cut.fingerprint == whole.fingerprint);
     CHECK(cut.traffic == whole.traffic);
     CHECK(cut.summary == whole.summary);

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# `masnet run` started by mpirun: one run in one tile per rank (docs/decisions/0012-partitioned-
+# runs.md). Every file of the run directory equals the run in one piece but for what the run cost
+# (summary.json's events and wall time); --tiles other than the number of ranks is refused.
+# Usage: run_over_ranks.sh <masnet> <mpiexec> <source dir> <ranks>
+set -euo pipefail
+masnet=$1 mpiexec=$2 source=$3 ranks=$4
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+scenario=(run "$source/scenarios/paper/acoustic_tracking.yaml" --set tie_order=origin
+  --set duration=1 --set output.snapshots=[0.5] --set output.figures=false
+  --set output.report=false --quiet)
+mpi=("$mpiexec" --oversubscribe --allow-run-as-root -n "$ranks")
+
+"$masnet" "${scenario[@]}" --out "$work/whole"
+"${mpi[@]}" "$masnet" "${scenario[@]}" --out "$work/ranks"
+for f in "$work"/whole/*; do
+  name=$(basename "$f")
+  if [ "$name" = summary.json ]; then
+    diff <(grep -v '"events"\|"wall_time_s"' "$f") \
+      <(grep -v '"events"\|"wall_time_s"' "$work/ranks/$name")
+  else
+    cmp "$f" "$work/ranks/$name"
+  fi
+done
+[ "$(ls "$work/whole")" = "$(ls "$work/ranks")" ]
+
+# One tile per rank: another count is refused before anything runs.
+status=0
+"${mpi[@]}" "$masnet" "${scenario[@]}" --out "$work/refused" --tiles $((ranks + 1)) \
+  2> "$work/stderr" || status=$?
+[ "$status" -ne 0 ]
+grep -q "^masnet run: --tiles $((ranks + 1)) under $ranks MPI ranks: each rank runs one tile (give --tiles $ranks or leave it out)$" "$work/stderr"
+[ ! -e "$work/refused" ]
+echo "run over $ranks ranks: every output equals the run in one piece"
