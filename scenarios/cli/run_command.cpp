@@ -107,7 +107,8 @@ CLI::App* add_run_subcommand(CLI::App& app, RunArgs& args) {
                   "write the log to this file (appended to) instead of stderr");
   run->add_option("--tiles", args.tiles,
                   "cut the run into this many bands of sensors, run side by side on the allowed "
-                  "processors: the same outputs, not faster yet (needs tie_order: origin)")
+                  "processors (under mpirun: one per rank): the same outputs, not faster yet "
+                  "(needs tie_order: origin)")
       ->check(CLI::Range(1u, 1024u));
   add_serve_options(*run, args.serve);
 
