@@ -149,9 +149,10 @@ void World::start() {
   if (b.senders == BeaconSenders::robots || b.senders == BeaconSenders::all)
     for (std::size_t i = 0; i < robots_.size(); ++i)
       schedule(robot_node(i), robot_key(i));
+  // A tile of a partitioned run sends its own sensors' beacons (every tile runs every robot).
   if (b.senders == BeaconSenders::sensors || b.senders == BeaconSenders::all)
     for (std::size_t s = 0; s < def_.sensors.size(); ++s)
-      schedule(sensor_node(s), sensor_key(s));
+      if (radio_.owns(sensor_node(s))) schedule(sensor_node(s), sensor_key(s));
 }
 
 void World::absorb_tile(const TileCounts& counts, const net::Radio::TileLedger& ledger) {

@@ -17,8 +17,8 @@ const std::vector<NodeId>& Radio::static_slots() {
 
 void Radio::own_static_slots(std::uint32_t first, std::uint32_t end) {
   MASNET_ASSERT(simulator_.ties_by_origin(), "tiles run in the origin order");
-  MASNET_ASSERT(!contended_ && params_.jitter_s <= 0 && !guarded() && !link_faults_.any(),
-                "tiles need level ideal or airtime, no jitter, batteries or faults");
+  MASNET_ASSERT(!contended_ && params_.jitter_s <= 0 && !any_battery_ && !link_faults_.any(),
+                "tiles need level ideal or airtime, no jitter, batteries or link faults");
   const auto slots = static_cast<std::uint32_t>(static_slots().size());
   MASNET_ASSERT(first <= end && end <= slots, "a tile owns slots of the index");
   owned_first_ = first;

@@ -1,8 +1,9 @@
 // A run cut into tiles by space (scenarios/run/run_tiles.hpp, docs/decisions/0012-partitioned-
 // runs.md): bands of sensors side by side in conservative windows, every robot in every tile.
 // Every output file and both fingerprints equal the run in one piece, for 2 and 3 tiles on one
-// and two threads, and over ranks (threads standing in for MPI ranks: every frame, share and
-// ledger crosses as bytes); what the tiles cannot run yet is refused with the reason.
+// and two threads (the acoustic and pollution scenarios, robot groups, beacons, kills), and over
+// ranks (threads standing in for MPI ranks: every frame, share and ledger crosses as bytes); what
+// the tiles cannot run yet is refused with the reason.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -93,9 +94,15 @@ Outcome run_in(const ScenarioDef& def, unsigned tiles, unsigned threads, TileLin
   fs::remove_all(dir);
   fs::create_directories(dir);
   run.write_files(dir.string());
-  for (const char* file :
-       {"nodes.csv", "timeseries.csv", "trajectories.csv", "snapshots.json", "replay.json"})
-    o.files.push_back(masnet::test::slurp(dir / file));
+  // Every file the run writes, by name (name, then content); summary.json is `summary` above.
+  std::vector<fs::path> written;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir))
+    if (entry.path().filename() != "summary.json") written.push_back(entry.path());
+  std::sort(written.begin(), written.end());
+  for (const fs::path& file : written) {
+    o.files.push_back(file.filename().string());
+    o.files.push_back(masnet::test::slurp(file));
+  }
   fs::remove_all(dir);
   return o;
 }
@@ -124,9 +131,11 @@ void check_tiles_equal_whole(const ScenarioDef& def) {
     CHECK(cut.fingerprint == whole.fingerprint);
     CHECK(cut.traffic == whole.traffic);
     CHECK(cut.summary == whole.summary);
-    for (std::size_t f = 0; f < whole.files.size(); ++f) {
-      INFO("file " << f);
+    REQUIRE(cut.files.size() == whole.files.size());
+    for (std::size_t f = 0; f < whole.files.size(); f += 2) {
+      INFO(whole.files[f]);
       CHECK(cut.files[f] == whole.files[f]);
+      CHECK(cut.files[f + 1] == whole.files[f + 1]);
     }
   }
 }
@@ -152,6 +161,38 @@ TEST_CASE("tiles: the acoustic scenario cut into bands gives every output of the
   check_tiles_equal_whole(def);
 }
 
+TEST_CASE("tiles: the pollution scenario (diffusion, dispensers, its baseline) in bands",
+          "[scenarios][tiles]") {
+  const ScenarioDef def = load("scenarios/paper/pollution_control.yaml",
+                               {"tie_order=origin", "duration=2", "output.snapshots=[1]"});
+  REQUIRE(tiles_problem(def, 3).empty());
+  check_tiles_equal_whole(def);
+}
+
+TEST_CASE("tiles: robot groups in formation, and beacons of sensors and robots, in bands",
+          "[scenarios][tiles]") {
+  const ScenarioDef groups = load("scenarios/paper/formation_tracking.yaml",
+                                  {"tie_order=origin", "duration=1", "output.snapshots=[0.5]"});
+  REQUIRE(tiles_problem(groups, 3).empty());
+  check_tiles_equal_whole(groups);
+  const ScenarioDef beacons =
+      load("scenarios/examples/beacons.yaml", {"tie_order=origin", "duration=3"});
+  REQUIRE(tiles_problem(beacons, 3).empty());
+  check_tiles_equal_whole(beacons);
+}
+
+TEST_CASE("tiles: sensors and robots killed and restarted, in bands", "[scenarios][tiles]") {
+  // A tenth of the sensors for a second, a disk of them for good, a robot for two seconds.
+  const ScenarioDef def =
+      load("scenarios/paper/acoustic_tracking.yaml",
+           {"tie_order=origin", "duration=3", "output.snapshots=[1.5]",
+            "faults=[{at: 1.0, until: 2.0, kill: sensors, fraction: 0.1}, {at: 1.5, kill: sensors, "
+            "region: {center: [0.3, 0.3], radius: 0.2}}, {at: 0.5, until: 2.5, kill: robots, ids: "
+            "[1]}]"});
+  REQUIRE(tiles_problem(def, 3).empty());
+  check_tiles_equal_whole(def);
+}
+
 TEST_CASE("tiles: what they cannot run yet is refused with the reason", "[scenarios][tiles]") {
   const std::string bench = "scenarios/bench/scaling_1e4.yaml";
   CHECK(tiles_problem(load(bench, {}), 1).empty());
@@ -162,5 +203,8 @@ TEST_CASE("tiles: what they cannot run yet is refused with the reason", "[scenar
         "tiles need radio.level ideal or airtime");
   CHECK(tiles_problem(load(bench, {"tie_order=origin", "sensors.battery=1"}), 2) ==
         "tiles do not run batteries yet");
+  CHECK(tiles_problem(load(bench, {"tie_order=origin",
+                                   "faults=[{at: 0.01, partition: {line: [[0.5, 0], [0.5, 1]]}}]"}),
+                      2) == "tiles do not run partitions or degraded areas yet");
   CHECK(tiles_problem(load(bench, {"tie_order=origin"}), 0) == "expected at least 1 tile");
 }
