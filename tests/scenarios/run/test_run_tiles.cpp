@@ -153,6 +153,16 @@ TEST_CASE("tiles: the scaling benchmark cut into 2 and 3 bands gives every outpu
   check_tiles_equal_whole(def);
 }
 
+TEST_CASE("tiles: the 10^5 benchmark, briefly, cut into bands gives every output of the whole run",
+          "[scenarios][tiles]") {
+  // 10⁵ sensors and 1 024 robots for 15 ms: the first reports, discoveries and updates.
+  const ScenarioDef def =
+      load("scenarios/bench/scaling_1e5.yaml",
+           {"tie_order=origin", "duration=0.015", "output.sample_period=0.005"});
+  REQUIRE(tiles_problem(def, 3).empty());
+  check_tiles_equal_whole(def);
+}
+
 TEST_CASE("tiles: the acoustic scenario cut into bands gives every output of the whole run",
           "[scenarios][tiles]") {
   const ScenarioDef def = load("scenarios/paper/acoustic_tracking.yaml",
