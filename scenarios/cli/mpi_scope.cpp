@@ -1,6 +1,10 @@
 #include "scenarios/cli/mpi_scope.hpp"
 
+#include <sched.h>
+
 #include <cstdlib>
+
+#include "sim/cpus.hpp"
 
 #ifdef MASNET_HAVE_MPI
 #include <mpi.h>
@@ -64,18 +68,23 @@ MpiScope::~MpiScope() {
 #endif
 }
 
-bool MpiScope::all_on_one_host() const {
+MpiScope::Host MpiScope::this_host() const {
+  Host host;
+  cpu_set_t mine;
+  CPU_ZERO(&mine);
+  const bool known = sched_getaffinity(0, sizeof(mine), &mine) == 0;
+  host.processors = known ? CPU_COUNT(&mine) : sim::allowed_cpu_count();
 #ifdef MASNET_HAVE_MPI
-  if (size_ <= 1) return true;
+  if (size_ <= 1) return host;
   MPI_Comm node;
   MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
-  int node_size = 0;
-  MPI_Comm_size(node, &node_size);
+  MPI_Comm_size(node, &host.ranks);
+  cpu_set_t all;
+  MPI_Allreduce(&mine, &all, static_cast<int>(sizeof(cpu_set_t)), MPI_BYTE, MPI_BOR, node);
+  if (known) host.processors = CPU_COUNT(&all);
   MPI_Comm_free(&node);
-  return node_size == size_;
-#else
-  return true;
 #endif
+  return host;
 }
 
 bool MpiScope::all(bool ok_here) const {

@@ -18,7 +18,13 @@ class MpiScope {
   int rank() const { return rank_; }
   int size() const { return size_; }
   /// Whether every rank runs on this host (collective: every rank must call it).
-  bool all_on_one_host() const;
+  bool all_on_one_host() const { return this_host().ranks == size_; }
+  /// The ranks on this rank's host, and the processors they may run on together (the union of
+  /// their affinity masks: mpirun binds each rank to its own). Collective.
+  struct Host {
+    int ranks = 1, processors = 1;
+  };
+  Host this_host() const;
   /// Whether `ok_here` holds on every rank (collective).
   bool all(bool ok_here) const;
   /// The ranks as the link of a run cut into one tile per rank (size() > 1).

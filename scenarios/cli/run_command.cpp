@@ -175,6 +175,17 @@ int run_run_command(const RunArgs& args) {
   // With one allowed processor the tiles would only take turns on it, each running every robot:
   // the run in one piece gives the same outputs sooner (ranks bring their own processors).
   const unsigned tiles = over_ranks || masnet::sim::allowed_cpu_count() >= 2 ? wanted_tiles : 1;
+  // More ranks than processors on a host: a rank that waits for a window polls, and each window
+  // then costs milliseconds instead of microseconds (docs/performance.md, "Windows on MPI ranks").
+  if (over_ranks) {
+    const MpiScope::Host host = mpi.this_host();
+    if (!mpi.all(host.ranks <= host.processors) && root)
+      std::fprintf(stderr,
+                   "masnet run: warning: more MPI ranks than processors on a host (here %d "
+                   "ranks, %d processors): every window waits on OpenMPI's polling; start at "
+                   "most one rank per processor\n",
+                   host.ranks, host.processors);
+  }
   const std::unique_ptr<TileLink> link = mpi.tile_link();
   Run run(run_def, tiles, 0, link.get());
   try {

@@ -95,11 +95,16 @@ void RunTiles::exchange() {
     std::swap(published_[first_tile_ + part], worlds_[part]->radio().outbox());
   }
   if (link_) {
-    // This rank's frames to every other rank; theirs in.
-    std::vector<std::byte> mine;
-    append_frames(mine, published_[first_tile_]);
-    for (std::size_t r = 0; r < tiles_; ++r)
-      rank_outbox_[r] = r == first_tile_ ? std::vector<std::byte>{} : mine;
+    // This rank's frames to every other rank (the buffers keep their capacity: a window's frames
+    // are megabytes on large networks, and fresh ones would be fresh pages); theirs in.
+    frame_bytes_.clear();
+    append_frames(frame_bytes_, published_[first_tile_]);
+    for (std::size_t r = 0; r < tiles_; ++r) {
+      if (r == first_tile_)
+        rank_outbox_[r].clear();
+      else
+        rank_outbox_[r].assign(frame_bytes_.begin(), frame_bytes_.end());
+    }
     const std::vector<std::vector<std::byte>>& inbox = link_->exchange(rank_outbox_);
     for (std::size_t r = 0; r < tiles_; ++r)
       if (r != first_tile_) {
@@ -140,8 +145,10 @@ void RunTiles::share_totals() {
   } else {
     std::vector<std::byte> mine;
     sim::append_records(mine, &worlds_[0]->radio().tile_totals(), 1);
-    for (std::size_t r = 0; r < tiles_; ++r)
-      rank_outbox_[r] = r != first_tile_ && r == 0 ? mine : std::vector<std::byte>{};
+    for (std::size_t r = 0; r < tiles_; ++r) {
+      rank_outbox_[r].clear();
+      if (r == 0 && first_tile_ != 0) rank_outbox_[r] = mine;
+    }
     const std::vector<std::vector<std::byte>>& inbox = link_->exchange(rank_outbox_);
     for (std::size_t r = 1; r < tiles_ && first_tile_ == 0; ++r)
       shares.push_back(sim::records_from<net::TileTotals>(inbox[r]).at(0));
