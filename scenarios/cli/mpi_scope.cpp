@@ -98,6 +98,17 @@ bool MpiScope::all(bool ok_here) const {
 #endif
 }
 
+bool MpiScope::first_rank_says(bool value) const {
+#ifdef MASNET_HAVE_MPI
+  if (size_ <= 1) return value;
+  int said = value ? 1 : 0;
+  MPI_Bcast(&said, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return said == 1;
+#else
+  return value;
+#endif
+}
+
 std::unique_ptr<TileLink> MpiScope::tile_link() const {
 #ifdef MASNET_HAVE_MPI
   if (size_ > 1) return std::make_unique<RankTileLink>();

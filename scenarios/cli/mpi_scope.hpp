@@ -27,6 +27,8 @@ class MpiScope {
   Host this_host() const;
   /// Whether `ok_here` holds on every rank (collective).
   bool all(bool ok_here) const;
+  /// The first rank's `value`, on every rank (collective).
+  bool first_rank_says(bool value) const;
   /// The ranks as the link of a run cut into one tile per rank (size() > 1).
   std::unique_ptr<TileLink> tile_link() const;
   [[noreturn]] void abort(int code);

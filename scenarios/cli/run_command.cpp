@@ -120,36 +120,49 @@ int run_run_command(const RunArgs& args) {
   // writes (docs/decisions/0012-partitioned-runs.md).
   MpiScope mpi(true);
   const bool root = mpi.rank() == 0, over_ranks = mpi.size() > 1;
-  std::optional<std::uint64_t> seed;
-  if (!args.seed.empty() || args.seed_given) {
-    Diagnostic problem;
-    seed = parse_seed(args.seed, problem);
-    if (!seed) return root ? print_diagnostics({problem}) : kBadInput;
-  }
-  std::vector<std::string> sets = args.sets;
-  if (args.baseline) sets.push_back("control.baseline=true");  // same as the scenario key
-  LoadResult loaded = load_scenario(args.scenario, sets, seed);
-  if (!loaded.scenario) return root ? print_diagnostics(loaded.diagnostics) : kBadInput;
-  if (root) print_warnings(loaded.warnings);
-  const ScenarioDef& def = *loaded.scenario;
+  // Every rank checks the command and the scenario alone; over ranks they refuse together (a
+  // rank that stopped alone would leave the others waiting in the run's first exchange).
+  std::optional<LoadResult> loaded;
   const auto ranks = static_cast<unsigned>(mpi.size());
-  if (over_ranks && args.tiles != 1 && args.tiles != ranks) {
-    if (root)
-      std::fprintf(stderr,
-                   "masnet run: --tiles %u under %u MPI ranks: each rank runs one tile (give "
-                   "--tiles %u or leave it out)\n",
-                   args.tiles, ranks, ranks);
-    return kBadInput;
-  }
   const unsigned wanted_tiles = over_ranks ? ranks : args.tiles;
-  if (std::string problem = tiles_problem(def, wanted_tiles); !problem.empty()) {
-    if (root) std::fprintf(stderr, "masnet run: --tiles %u: %s\n", wanted_tiles, problem.c_str());
+  const std::vector<std::string> refusal = [&]() -> std::vector<std::string> {
+    auto lines = [](const std::vector<Diagnostic>& diagnostics) {
+      std::vector<std::string> text;
+      for (const Diagnostic& d : diagnostics)
+        text.push_back(d.text());
+      return text;
+    };
+    std::optional<std::uint64_t> seed;
+    if (!args.seed.empty() || args.seed_given) {
+      Diagnostic problem;
+      seed = parse_seed(args.seed, problem);
+      if (!seed) return lines({problem});
+    }
+    std::vector<std::string> sets = args.sets;
+    if (args.baseline) sets.push_back("control.baseline=true");  // same as the scenario key
+    loaded = load_scenario(args.scenario, sets, seed);
+    if (!loaded->scenario) return lines(loaded->diagnostics);
+    if (over_ranks && args.tiles != 1 && args.tiles != ranks)
+      return {"masnet run: --tiles " + std::to_string(args.tiles) + " under " +
+              std::to_string(ranks) + " MPI ranks: each rank runs one tile (give --tiles " +
+              std::to_string(ranks) + " or leave it out)"};
+    if (std::string problem = tiles_problem(*loaded->scenario, wanted_tiles); !problem.empty())
+      return {"masnet run: --tiles " + std::to_string(wanted_tiles) + ": " + problem};
+    if (wanted_tiles > 1 && args.serve.serve)
+      return {"masnet run: --tiles and --serve cannot be used together"};
+    return {};
+  }();
+  if (!mpi.all(refusal.empty())) {
+    // The first rank speaks; another only when the first had nothing to say (a file that only
+    // it cannot read).
+    const bool first_refused = mpi.first_rank_says(!refusal.empty());  // every rank asks
+    if (root || !first_refused)
+      for (const std::string& line : refusal)
+        std::fprintf(stderr, "%s\n", line.c_str());
     return kBadInput;
   }
-  if (wanted_tiles > 1 && args.serve.serve) {
-    if (root) std::fprintf(stderr, "masnet run: --tiles and --serve cannot be used together\n");
-    return kBadInput;
-  }
+  if (root) print_warnings(loaded->warnings);
+  const ScenarioDef& def = *loaded->scenario;
   const std::string out =
       args.out.empty() ? "runs/" + def.name + "-seed" + std::to_string(def.seed) : args.out;
   // Refuse before simulating: a long run must not end in "cannot write". Over ranks the first

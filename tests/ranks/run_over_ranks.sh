@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `masnet run` started by mpirun: one run in one tile per rank (docs/decisions/0012-partitioned-
 # runs.md). Every file of the run directory equals the run in one piece but for what the run cost
-# (summary.json's events and wall time); --tiles other than the number of ranks is refused.
+# (summary.json's events and wall time); --tiles other than the number of ranks is refused, and a
+# scenario file one rank cannot read stops every rank (exit 2, the message once, never a hang).
 # Usage: run_over_ranks.sh <masnet> <mpiexec> <source dir> <ranks>
 set -euo pipefail
 masnet=$1 mpiexec=$2 source=$3 ranks=$4
@@ -38,4 +39,18 @@ status=0
 [ "$status" -ne 0 ]
 grep -q "^masnet run: --tiles $((ranks + 1)) under $ranks MPI ranks: each rank runs one tile (give --tiles $ranks or leave it out)$" "$work/stderr"
 [ ! -e "$work/refused" ]
+# A file only the last rank cannot read: every rank stops (exit 2, nothing written, no hang),
+# and the message is printed once.
+cat > "$work/last_rank_misses.sh" <<EOF
+#!/usr/bin/env bash
+file="$source/scenarios/paper/acoustic_tracking.yaml"
+[ "\$OMPI_COMM_WORLD_RANK" = $((ranks - 1)) ] && file="$work/missing.yaml"
+exec "$masnet" run "\$file" --set tie_order=origin --set duration=1 --set output.snapshots=[] \
+  --out "$work/missing" --quiet
+EOF
+status=0
+timeout 120 "${mpi[@]}" bash "$work/last_rank_misses.sh" 2> "$work/stderr" || status=$?
+[ "$status" -ne 0 ] && [ "$status" -ne 124 ]
+[ "$(grep -c "^$work/missing.yaml:1:1: cannot read the scenario file (No such file or directory)$" "$work/stderr")" = 1 ]
+[ ! -e "$work/missing" ]
 echo "run over $ranks ranks: every output equals the run in one piece"
