@@ -8,6 +8,9 @@
 #include "sim/assert.hpp"
 
 namespace masnet::ranks {
+namespace {
+constexpr int kBytesTag = 0x6d61;  // the exchange's messages; nothing else is sent point to point
+}  // namespace
 
 RankExchange::RankExchange() {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
@@ -15,8 +18,6 @@ RankExchange::RankExchange() {
   const auto ranks = static_cast<std::size_t>(size_);
   send_counts_.assign(ranks, 0);
   receive_counts_.assign(ranks, 0);
-  send_offsets_.assign(ranks, 0);
-  receive_offsets_.assign(ranks, 0);
   inbox_.assign(ranks, {});
 }
 
@@ -30,32 +31,34 @@ sim::Time RankExchange::earliest(sim::Time earliest_here) const {
 const std::vector<std::vector<std::byte>>& RankExchange::exchange(
     const std::vector<std::vector<std::byte>>& outbox) {
   MASNET_ASSERT(outbox.size() == static_cast<std::size_t>(size_), "one outbox entry per rank");
-  // The counts first (one int per pair of ranks), then the bytes in one call.
-  send_buffer_.clear();
+  // The counts first (one int per pair of ranks), then each pair's bytes straight from the
+  // outbox into the inbox: no gathered copy on either side (a tile's ledger at the end of a
+  // large run is hundreds of megabytes).
   for (int r = 0; r < size_; ++r) {
     const auto k = static_cast<std::size_t>(r);
     const std::size_t count = r == rank_ ? 0 : outbox[k].size();
-    MASNET_ASSERT(send_buffer_.size() + count <= std::numeric_limits<int>::max(),
-                  "a window's exchange stays under 2 GiB");
-    send_offsets_[k] = static_cast<int>(send_buffer_.size());
+    MASNET_ASSERT(count <= static_cast<std::size_t>(std::numeric_limits<int>::max()),
+                  "a window's exchange with one rank stays under 2 GiB");
     send_counts_[k] = static_cast<int>(count);
-    if (count > 0) send_buffer_.insert(send_buffer_.end(), outbox[k].begin(), outbox[k].end());
+    bytes_sent_ += count;
   }
-  bytes_sent_ += send_buffer_.size();
   MPI_Alltoall(send_counts_.data(), 1, MPI_INT, receive_counts_.data(), 1, MPI_INT, MPI_COMM_WORLD);
-  int total = 0;
-  for (std::size_t k = 0; k < receive_counts_.size(); ++k) {
-    receive_offsets_[k] = total;
-    total += receive_counts_[k];
+  std::vector<MPI_Request> requests;
+  requests.reserve(2 * outbox.size());
+  for (int r = 0; r < size_; ++r) {
+    const auto k = static_cast<std::size_t>(r);
+    inbox_[k].resize(static_cast<std::size_t>(receive_counts_[k]));
+    if (receive_counts_[k] > 0)
+      MPI_Irecv(inbox_[k].data(), receive_counts_[k], MPI_BYTE, r, kBytesTag, MPI_COMM_WORLD,
+                &requests.emplace_back());
   }
-  receive_buffer_.resize(static_cast<std::size_t>(total));
-  MPI_Alltoallv(send_buffer_.data(), send_counts_.data(), send_offsets_.data(), MPI_BYTE,
-                receive_buffer_.data(), receive_counts_.data(), receive_offsets_.data(), MPI_BYTE,
-                MPI_COMM_WORLD);
-  for (std::size_t k = 0; k < inbox_.size(); ++k) {
-    const std::byte* from = receive_buffer_.data() + receive_offsets_[k];
-    inbox_[k].assign(from, from + receive_counts_[k]);
+  for (int r = 0; r < size_; ++r) {
+    const auto k = static_cast<std::size_t>(r);
+    if (send_counts_[k] > 0)
+      MPI_Isend(outbox[k].data(), send_counts_[k], MPI_BYTE, r, kBytesTag, MPI_COMM_WORLD,
+                &requests.emplace_back());
   }
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
   return inbox_;
 }
 

@@ -31,8 +31,7 @@ class RankExchange {
 
  private:
   int rank_ = 0, size_ = 1;
-  std::vector<int> send_counts_, receive_counts_, send_offsets_, receive_offsets_;
-  std::vector<std::byte> send_buffer_, receive_buffer_;
+  std::vector<int> send_counts_, receive_counts_;
   std::vector<std::vector<std::byte>> inbox_;
   std::size_t bytes_sent_ = 0;
 };
