@@ -188,6 +188,8 @@ void RunTiles::absorb_ranks() {
   // Every other rank sends the first its tile's end: ledger, counts and its sensors' streams.
   agents::World& world = *worlds_[0];
   std::vector<sim::Fingerprint> streams = simulators_[0]->origin_streams();
+  for (std::vector<std::byte>& bytes : rank_outbox_)
+    bytes.clear();
   if (first_tile_ != 0) {
     TileEnd end{world.tile_counts(), world.radio().tile_ledger(), {}, simulators_[0]->events_run()};
     const std::vector<sim::NodeId>& slots = world.radio().static_slots();
@@ -200,7 +202,7 @@ void RunTiles::absorb_ranks() {
     rank_outbox_[0] = tile_end_bytes(end);
   }
   const std::vector<std::vector<std::byte>>& inbox = link_->exchange(rank_outbox_);
-  rank_outbox_[0].clear();
+  std::vector<std::byte>().swap(rank_outbox_[0]);  // hundreds of megabytes on large runs
   if (first_tile_ != 0) return;
   for (std::size_t r = 1; r < tiles_; ++r) {
     const TileEnd end = tile_end_from(inbox[r]);
