@@ -98,9 +98,11 @@ void World::strike(std::size_t f) {
       break;
     case FaultKind::partition:
       radio_.link_faults().add_cut(id, fault.line);
+      radio_.link_faults_changed();
       break;
     case FaultKind::degrade:
       radio_.link_faults().add_degraded(id, net::DegradedArea{*fault.region, fault.loss});
+      radio_.link_faults_changed();
       break;
   }
   if (observer_) observer_->on_fault(f, true);
@@ -111,8 +113,10 @@ void World::lift(std::size_t f) {
   if (def_.faults[f].kind == FaultKind::kill)
     for (NodeId node : fault_victims_[f])
       restart(node);
-  else
+  else {
     radio_.link_faults().remove(static_cast<std::uint32_t>(f));
+    radio_.link_faults_changed();
+  }
   if (observer_) observer_->on_fault(f, false);
 }
 

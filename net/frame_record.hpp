@@ -23,6 +23,12 @@ struct FrameRecord {
   bool destination_reached = false;    ///< a unicast's addressee was within range at send time
   std::vector<NodeId> mobile_hearers;  ///< in range at send time, sender and addressee excluded
   Payload payload;
+  // With link faults (partitions, degraded areas): the state they were in when it was sent, each
+  // mobile hearer's loss then (the ones a partition cut off are not hearers), and the mobile
+  // addressee's (negative: cut off). A mobile node may have moved since.
+  std::uint32_t link_epoch = 0;
+  std::vector<double> mobile_losses;
+  double destination_loss = 0.0;
 };
 
 }  // namespace masnet::net

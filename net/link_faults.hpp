@@ -54,4 +54,18 @@ class LinkFaults {
   std::vector<std::pair<std::uint32_t, DegradedArea>> areas_;
 };
 
+/// Every state the link faults have been in, numbered from 0 (none): a tile of a partitioned run
+/// judges another tile's frame under the faults in force when it was sent, not when it arrives
+/// here (docs/decisions/0012-partitioned-runs.md).
+class LinkFaultHistory {
+ public:
+  LinkFaultHistory() : states_(1) {}
+  void record(const LinkFaults& now) { states_.push_back(now); }
+  std::uint32_t epoch() const { return static_cast<std::uint32_t>(states_.size() - 1); }
+  const LinkFaults& at(std::uint32_t epoch) const { return states_.at(epoch); }
+
+ private:
+  std::vector<LinkFaults> states_;
+};
+
 }  // namespace masnet::net

@@ -254,9 +254,10 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   // gathered in scratch_receivers_.
   const Outgoing out{source, destination, source_index,         type_index,
                      bytes,  range,       destination_distance, frame_number};
-  const Heard heard = shipped || tiled_    ? hear<false, true>(out)
-                      : link_faults_.any() ? hear<true, false>(out)
-                                           : hear<false, false>(out);
+  const bool links = link_faults_.any();
+  const Heard heard = tiled_  ? (links ? hear<true, true>(out) : hear<false, true>(out))
+                      : links ? hear<true, false>(out)
+                              : hear<false, false>(out);
   ++sent.count;
   sent.bytes += bytes;
   book_heard(type_index, bytes, heard);
@@ -269,10 +270,10 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   if (shipped) [[unlikely]] {
     // The other tiles' nodes get it from the record, with the key its delivery takes here.
     const sim::EventKey key = simulator_.next_key(arrival);
-    outbox_.push_back(FrameRecord{now, arrival, key, source, destination, range,
-                                  destination_distance, frame_number,
-                                  static_cast<std::uint32_t>(type_index), bytes,
-                                  heard.destination_reached, record_mobiles_, payload});
+    outbox_.push_back(FrameRecord{
+        now, arrival, key, source, destination, range, destination_distance, frame_number,
+        static_cast<std::uint32_t>(type_index), bytes, heard.destination_reached, record_mobiles_,
+        payload, link_history_.epoch(), record_losses_, record_destination_loss_});
     if (!scratch_receivers_.empty()) deliver(arrival, out, now, std::move(payload), &key);
     return true;
   }

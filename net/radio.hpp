@@ -185,8 +185,12 @@ class Radio {
   /// Brings a node taken down back up now; false (and nothing) if its battery is empty or it
   /// is up.
   bool bring_up(NodeId node);
-  /// The partitions and degraded areas in force: the world edits them at the faults' times.
+  /// The partitions and degraded areas in force: the world edits them at the faults' times, and
+  /// then says so (a tile keeps each state for the frames of other tiles sent under it).
   LinkFaults& link_faults() { return link_faults_; }
+  void link_faults_changed() {
+    if (tiled_) link_history_.record(link_faults_);
+  }
 
   /// What contention did, per message type and per sending node (levels collision and csma;
   /// null otherwise).
@@ -338,8 +342,8 @@ class Radio {
   }
   /// A partition stands between `from` and `to` / the loss there with degraded areas (out of
   /// line: only runs with link faults in force ask).
-  [[gnu::noinline]] bool link_cut(const Vec2& from, NodeId to) const;
-  [[gnu::noinline]] double link_loss(const Vec2& from, NodeId to) const;
+  [[gnu::noinline]] bool link_cut(const LinkFaults& faults, const Vec2& from, NodeId to) const;
+  [[gnu::noinline]] double link_loss(const LinkFaults& faults, const Vec2& from, NodeId to) const;
   /// Hands the frame to scratch_receivers_ at `arrival` (net/radio_delivery.cpp). Its parts,
   /// not a Frame: it is built in place where it waits (see Batch).
   /// `key`: the delivery's key when made already (tiles).
@@ -535,6 +539,9 @@ class Radio {
   bool reaches_band(const Vec2& center, double range) const;
   std::vector<FrameRecord> outbox_;
   std::vector<NodeId> record_mobiles_;
+  std::vector<double> record_losses_;  // with link faults: each recorded hearer's loss then
+  double record_destination_loss_ = 0.0;
+  LinkFaultHistory link_history_;
   TileTotals static_share_;
   std::vector<TileTotals> sibling_shares_;
 };

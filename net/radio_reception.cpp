@@ -131,12 +131,12 @@ bool Radio::reaches_band(const Vec2& center, double range) const {
   return center.y() + range + slack >= band_y_min_ && center.y() - range - slack <= band_y_max_;
 }
 
-bool Radio::link_cut(const Vec2& from, NodeId to) const {
-  return link_faults_.cut(from, position(to));
+bool Radio::link_cut(const LinkFaults& faults, const Vec2& from, NodeId to) const {
+  return faults.cut(from, position(to));
 }
 
-double Radio::link_loss(const Vec2& from, NodeId to) const {
-  return 1.0 - (1.0 - params_.loss) * (1.0 - link_faults_.loss(from, position(to)));
+double Radio::link_loss(const LinkFaults& faults, const Vec2& from, NodeId to) const {
+  return 1.0 - (1.0 - params_.loss) * (1.0 - faults.loss(from, position(to)));
 }
 
 template <bool kLinkFaults, bool kTiled>
@@ -169,14 +169,21 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
   const bool drains = battery && params_.energy.idle_power_w > 0;
   const std::uint32_t* const interest = interest_.data();
   const Vec2 center = position(source);
+  // Another tile's frame is judged under the link faults in force when it was sent.
+  const LinkFaults& faults =
+      links && tiled && remote != nullptr ? link_history_.at(remote->link_epoch) : link_faults_;
   // Inlined: it runs for every receiver of a broadcast; the fault checks stay out of line.
-  auto receive = [&](NodeId id, std::uint32_t hot) __attribute__((always_inline)) {
-    if (links && link_cut(center, id)) return;
+  // `given_loss` >= 0: a mobile hearer of another tile's frame, judged there when it was sent.
+  auto receive = [&](NodeId id, std::uint32_t hot, double given_loss = -1.0)
+      __attribute__((always_inline)) {
+    if (links && given_loss < 0.0 && link_cut(faults, center, id)) return;
     if (guarded_nodes && !afford(id, rx_j)) return;
     heard[hot] += bytes;
     ++hearers;
     if (drains) schedule_depletion(id);  // the idle drain now ends sooner
-    const double loss = links ? link_loss(center, id) : params_.loss;
+    const double loss = !links              ? params_.loss
+                        : given_loss >= 0.0 ? given_loss
+                                            : link_loss(faults, center, id);
     if (loss > 0) {
       Node& node = nodes_[sim::index(id)];
       if (sim::keyed_uniform01(seed_, kLossPurpose, nodes_[source_index].random_key,
@@ -191,8 +198,8 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
     ++received;
     if (interest[hot] & type_bit) receivers.push_back(id);
   };
-  auto overhear = [&](NodeId id, std::uint32_t hot) {
-    if (links && link_cut(center, id)) return;
+  auto overhear = [&](NodeId id, std::uint32_t hot, bool judged = false) {
+    if (links && !judged && link_cut(faults, center, id)) return;
     if (guarded_nodes && !afford(id, rx_j)) return;
     heard[hot] += bytes;
     ++overheard[hot];
@@ -318,9 +325,9 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
   }
   std::uint64_t static_hearers = hearers, static_received = received;
   // A static addressee is booked after the mobile hearers, but is the tile's own share.
-  auto receive_destination = [&] {
+  auto receive_destination = [&](double given_loss = -1.0) {
     const std::uint64_t hearers_before = hearers, received_before = received;
-    receive(destination, destination_hot);
+    receive(destination, destination_hot, given_loss);
     if (tiled && destination_hot < static_count) {
       static_hearers += hearers - hearers_before;
       static_received += received - received_before;
@@ -329,24 +336,41 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
   if (tiled && remote != nullptr) {
     // Another tile's frame: the mobile nodes that heard it then, and its addressee if this tile
     // holds it (the sender's tile counted an unreachable one).
-    for (const NodeId id : remote->mobile_hearers)
+    for (std::size_t k = 0; k < remote->mobile_hearers.size(); ++k) {
+      const NodeId id = remote->mobile_hearers[k];
       if (is_broadcast)
-        receive(id, hot_[sim::index(id)]);
+        receive(id, hot_[sim::index(id)], links ? remote->mobile_losses[k] : -1.0);
       else
-        overhear(id, hot_[sim::index(id)]);
-    if (!is_broadcast && remote->destination_reached && owns(destination)) receive_destination();
+        overhear(id, hot_[sim::index(id)], links);
+    }
+    if (!is_broadcast && remote->destination_reached && owns(destination)) {
+      if (!links || destination_hot < static_count)
+        receive_destination();
+      else if (remote->destination_loss >= 0.0)  // not cut off then
+        receive_destination(remote->destination_loss);
+    }
     return Heard{hearers,        received,        lost,
                  static_hearers, static_received, remote->destination_reached};
   }
   // A tile's static sender names the mobile hearers in its frame's record.
+  // With link faults, also the verdicts a remote tile could not reach later (the nodes move).
   const bool record = tiled && source_hot < static_count;
-  if (record) record_mobiles_.clear();
+  if (record) {
+    record_mobiles_.clear();
+    record_losses_.clear();
+    record_destination_loss_ = 0.0;
+  }
+  auto record_mobile = [&](NodeId id) {
+    if (!record || (links && link_cut(faults, center, id))) return;
+    record_mobiles_.push_back(id);
+    if (links) record_losses_.push_back(link_loss(faults, center, id));
+  };
   bool reached = false;
   if (is_broadcast) {
     for_each_mobile_within(
         center, range,
         [&](NodeId id) {
-          if (record) record_mobiles_.push_back(id);
+          record_mobile(id);
           receive(id, hot_[sim::index(id)]);
         },
         source, sim::kNoNode);
@@ -354,7 +378,7 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
     for_each_mobile_within(
         center, range,
         [&](NodeId id) {
-          if (record) record_mobiles_.push_back(id);
+          record_mobile(id);
           overhear(id, hot_[sim::index(id)]);
         },
         source, destination, destination_distance);
@@ -363,6 +387,9 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
     const double distance = destination_distance >= 0.0 ? destination_distance
                                                         : (position(destination) - center).norm();
     reached = distance <= range;
+    if (record && links && reached && destination_hot >= static_count)
+      record_destination_loss_ =
+          link_cut(faults, center, destination) ? -1.0 : link_loss(faults, center, destination);
     if (!reached)
       ++nodes_[source_index].unreachable_count;
     else if (!tiled || owns(destination))
@@ -374,5 +401,6 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
 template Radio::Heard Radio::hear<false, false>(const Outgoing& out, const FrameRecord* remote);
 template Radio::Heard Radio::hear<true, false>(const Outgoing& out, const FrameRecord* remote);
 template Radio::Heard Radio::hear<false, true>(const Outgoing& out, const FrameRecord* remote);
+template Radio::Heard Radio::hear<true, true>(const Outgoing& out, const FrameRecord* remote);
 
 }  // namespace masnet::net

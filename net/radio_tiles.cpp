@@ -18,7 +18,8 @@ const std::vector<NodeId>& Radio::static_slots() {
 void Radio::own_static_slots(std::uint32_t first, std::uint32_t end) {
   MASNET_ASSERT(simulator_.ties_by_origin(), "tiles run in the origin order");
   MASNET_ASSERT(!contended_ && params_.jitter_s <= 0 && !any_battery_ && !link_faults_.any(),
-                "tiles need level ideal or airtime, no jitter, batteries or link faults");
+                "tiles need level ideal or airtime, no jitter or batteries, and start with no "
+                "link faults in force");
   const auto slots = static_cast<std::uint32_t>(static_slots().size());
   MASNET_ASSERT(first <= end && end <= slots, "a tile owns slots of the index");
   owned_first_ = first;
@@ -47,7 +48,8 @@ void Radio::inject(const FrameRecord& record) {
   const Outgoing out{
       record.source, record.destination, sim::index(record.source),   record.type_index,
       record.bytes,  record.range,       record.destination_distance, record.frame_number};
-  const Heard heard = hear<false, true>(out, &record);
+  const Heard heard = link_history_.at(record.link_epoch).any() ? hear<true, true>(out, &record)
+                                                                : hear<false, true>(out, &record);
   book_heard(record.type_index, record.bytes, heard);
   if (scratch_receivers_.empty()) return;
   Payload payload = record.payload;

@@ -24,12 +24,10 @@ std::string tiles_problem(const ScenarioDef& def, unsigned tiles) {
   for (const agents::SensorDef& s : w.sensors)
     batteries = batteries || s.battery_j > 0;
   if (batteries) return "tiles do not run batteries yet";
-  // Kills and restarts strike every tile alike (each applies them to every node), as do the
+  // Faults strike every tile alike (each applies them to every node and link), as do the
   // diffusion field, the dispensers, robot groups and the world's own events: each tile runs them
-  // whole. Partitions and degraded areas would have to reach the frames that cross tiles.
-  for (const agents::FaultDef& fault : w.faults)
-    if (fault.kind != agents::FaultKind::kill)
-      return "tiles do not run partitions or degraded areas yet";
+  // whole. A frame that crosses tiles carries the link faults' state and its mobile hearers'
+  // verdicts from when it was sent.
   if (protocols::ground_truth_factory(w.protocol.kind) != nullptr)
     return "tiles do not run a protocol that reads the ground truth";
   if (w.sensors.size() < tiles) return "more tiles than sensors";

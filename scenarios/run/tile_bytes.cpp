@@ -20,6 +20,8 @@ struct FrameHead {
   std::uint64_t frame_number = 0;
   std::uint32_t type_index = 0, bytes = 0, hearers = 0, payload_index = 0;
   bool destination_reached = false;
+  std::uint32_t link_epoch = 0, losses = 0;  // losses: 0, or one per mobile hearer
+  double destination_loss = 0.0;
 };
 
 // Every field of each built-in message, in one order, for writing and reading alike. A message
@@ -141,9 +143,13 @@ void append_frames(std::vector<std::byte>& bytes, const std::vector<net::FrameRe
                          f.bytes,
                          static_cast<std::uint32_t>(f.mobile_hearers.size()),
                          index,
-                         f.destination_reached};
+                         f.destination_reached,
+                         f.link_epoch,
+                         static_cast<std::uint32_t>(f.mobile_losses.size()),
+                         f.destination_loss};
     append_value(bytes, head);
     sim::append_records(bytes, f.mobile_hearers.data(), f.mobile_hearers.size());
+    sim::append_records(bytes, f.mobile_losses.data(), f.mobile_losses.size());
     std::visit(
         [&](const auto& message) {
           if constexpr (!std::is_same_v<std::decay_t<decltype(message)>, net::CustomMessage>) {
@@ -173,8 +179,12 @@ void read_frames(std::span<const std::byte> bytes, std::vector<net::FrameRecord>
     f.type_index = head.type_index;
     f.bytes = head.bytes;
     f.destination_reached = head.destination_reached;
+    f.link_epoch = head.link_epoch;
+    f.destination_loss = head.destination_loss;
     f.mobile_hearers.resize(head.hearers);
     in.read(f.mobile_hearers.data(), f.mobile_hearers.size());
+    f.mobile_losses.resize(head.losses);
+    in.read(f.mobile_losses.data(), f.mobile_losses.size());
     f.payload = read_payload(in, head.payload_index, Builtin{});
   }
   if (!in.done()) throw std::runtime_error("tile frames: bytes left over");

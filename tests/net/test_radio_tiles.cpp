@@ -3,7 +3,8 @@
 // the other tiles after each conservative window, and the tiles' ledgers, absorbed into one, read
 // as the whole radio's. A network of sensors on a grid and robots on circles exchanges SENSE,
 // READING, REPORT and NEIGHBOR frames; cut into 2 and 3 tiles on 1 and 2 threads, every node
-// receives the same frames at the same times and every counter and energy is the same.
+// receives the same frames at the same times and every counter and energy is the same — also
+// under partitions and degraded areas that change while frames wait to cross.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -40,6 +41,10 @@ struct Circles : net::MobilePositions {
 
 using Reception = std::tuple<std::int64_t, std::uint32_t, std::uint64_t, int>;
 
+// Link faults that come and go every 7 ms (world events, the same in every tile): a partition
+// across the grid and a degraded disk that two robots' circles cross.
+bool g_link_faults = false;
+
 // The nodes' behaviour: the same code in the whole run and in every tile (a tile runs its own
 // sensors and every robot).
 struct Network : net::RadioListener {
@@ -64,11 +69,26 @@ struct Network : net::RadioListener {
   }
   // Robots ask the sensors around them every 10 ms, each at its own phase.
   void start() {
+    if (g_link_faults) sim.after(sim::seconds(0.007), [this] { toggle_link_faults(1); });
     for (std::uint32_t r = 0; r < kRobots; ++r) {
       const NodeId robot = sim::node_id(kSensors + r);
       sim.after_as(sim::origin_of(robot), sim::seconds(0.001 * (r + 1)),
                    [this, robot] { sense(robot); });
     }
+  }
+  void toggle_link_faults(std::uint32_t step) {
+    net::LinkFaults& faults = radio->link_faults();
+    if (step % 2 == 1) faults.add_cut(step, net::LineCut{Vec2{2.9, -1.0}, Vec2{3.1, 7.0}});
+    if (step % 3 == 1) {
+      net::DegradedArea area;
+      area.region.center = Vec2{2.6, 3.7};
+      area.region.radius = 0.8;
+      area.loss = 0.9;
+      faults.add_degraded(step, area);
+    }
+    if (step > 1) faults.remove(step - 1);
+    radio->link_faults_changed();
+    sim.after(sim::seconds(0.007), [this, step] { toggle_link_faults(step + 1); });
   }
   void sense(NodeId robot) {
     radio->broadcast(robot, 1.1, net::Sense{robot, 0, {}});
@@ -208,6 +228,20 @@ TEST_CASE("radio tiles: 2 and 3 tiles on 1 and 2 threads deliver and book as the
   net::RadioParams params;
   params.level = net::RadioLevel::ideal;
   check_tiles_equal_whole(params);
+}
+
+TEST_CASE("radio tiles: under partitions and degraded areas that change while frames cross",
+          "[net][tiles]") {
+  // Windows of 10 ms: the faults change and the robots move up to 22 cm (most of a sensor
+  // spacing) between a frame's send and its injection into the other tiles, which must judge it
+  // as it was when sent: judged there and then instead, the test fails.
+  net::RadioParams params;
+  params.level = net::RadioLevel::ideal;
+  params.latency_s = 0.01;
+  params.loss = 0.1;
+  g_link_faults = true;
+  check_tiles_equal_whole(params);
+  g_link_faults = false;
 }
 
 TEST_CASE("radio tiles: with airtime queues and losses too", "[net][tiles]") {

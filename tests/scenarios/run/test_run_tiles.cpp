@@ -1,9 +1,9 @@
 // A run cut into tiles by space (scenarios/run/run_tiles.hpp, docs/decisions/0012-partitioned-
 // runs.md): bands of sensors side by side in conservative windows, every robot in every tile.
 // Every output file and both fingerprints equal the run in one piece, for 2 and 3 tiles on one
-// and two threads (the acoustic and pollution scenarios, robot groups, beacons, kills), and over
-// ranks (threads standing in for MPI ranks: every frame, share and ledger crosses as bytes); what
-// the tiles cannot run yet is refused with the reason.
+// and two threads (the acoustic and pollution scenarios, robot groups, beacons, kills, link
+// faults), and over ranks (threads standing in for MPI ranks: every frame, share and ledger crosses
+// as bytes); what the tiles cannot run yet is refused with the reason.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -203,6 +203,19 @@ TEST_CASE("tiles: sensors and robots killed and restarted, in bands", "[scenario
   check_tiles_equal_whole(def);
 }
 
+TEST_CASE("tiles: a partition and a degraded area that come and go, in bands",
+          "[scenarios][tiles]") {
+  // The partition crosses the bands (x = 0.5) and the degraded disk straddles them: frames cross
+  // tiles under both, and robots move while those frames wait for the window's end.
+  const ScenarioDef def =
+      load("scenarios/paper/acoustic_tracking.yaml",
+           {"tie_order=origin", "duration=3", "output.snapshots=[1.5]", "radio.loss=0.05",
+            "faults=[{at: 0.6, until: 2.2, partition: {line: [[0.5, 0.0], [0.5, 1.0]]}}, {at: 1.0, "
+            "until: 2.5, degrade: {region: {center: [0.5, 0.5], radius: 0.3}, loss: 0.4}}]"});
+  REQUIRE(tiles_problem(def, 3).empty());
+  check_tiles_equal_whole(def);
+}
+
 TEST_CASE("tiles: what they cannot run yet is refused with the reason", "[scenarios][tiles]") {
   const std::string bench = "scenarios/bench/scaling_1e4.yaml";
   CHECK(tiles_problem(load(bench, {}), 1).empty());
@@ -213,8 +226,7 @@ TEST_CASE("tiles: what they cannot run yet is refused with the reason", "[scenar
         "tiles need radio.level ideal or airtime");
   CHECK(tiles_problem(load(bench, {"tie_order=origin", "sensors.battery=1"}), 2) ==
         "tiles do not run batteries yet");
-  CHECK(tiles_problem(load(bench, {"tie_order=origin",
-                                   "faults=[{at: 0.01, partition: {line: [[0.5, 0], [0.5, 1]]}}]"}),
-                      2) == "tiles do not run partitions or degraded areas yet");
+  CHECK(tiles_problem(load(bench, {"tie_order=origin", "protocol.kind=oracle"}), 2) ==
+        "tiles do not run a protocol that reads the ground truth");
   CHECK(tiles_problem(load(bench, {"tie_order=origin"}), 0) == "expected at least 1 tile");
 }

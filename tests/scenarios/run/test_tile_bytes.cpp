@@ -29,8 +29,12 @@ net::FrameRecord frame(std::uint64_t number, net::Payload payload) {
   f.type_index = static_cast<std::uint32_t>(payload.index());
   f.bytes = 40 + static_cast<std::uint32_t>(number);
   f.destination_reached = number % 2 == 1;
-  for (std::uint32_t h = 0; h < number; ++h)
+  for (std::uint32_t h = 0; h < number; ++h) {
     f.mobile_hearers.push_back(sim::node_id(500 + h));
+    if (number % 2 == 0) f.mobile_losses.push_back(0.125 * h);  // link faults in force
+  }
+  f.link_epoch = static_cast<std::uint32_t>(number % 3);
+  f.destination_loss = number % 2 ? -1.0 : 0.375;
   f.payload = std::move(payload);
   return f;
 }
@@ -68,6 +72,9 @@ TEST_CASE("tile bytes: frames of every built-in message type read back as writte
     CHECK(g.bytes == f.bytes);
     CHECK(g.destination_reached == f.destination_reached);
     CHECK(g.mobile_hearers == f.mobile_hearers);
+    CHECK(g.mobile_losses == f.mobile_losses);
+    CHECK(g.link_epoch == f.link_epoch);
+    CHECK(g.destination_loss == f.destination_loss);
     REQUIRE(g.payload.index() == f.payload.index());
   }
   CHECK(std::get<net::Beacon>(back[0].payload).position == Vec2(1.5, -2.0));
