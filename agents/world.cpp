@@ -343,6 +343,16 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
                                      protocols::CentroidAccumulator& accumulator,
                                      protocols::GeometryWork* work) {
   if (cell.empty()) return 0;
+  // A robot's own reads (the oracle's pass): every tile of a partitioned run makes them, so what
+  // a tile counts for its sensors leaves them out (tile_counts).
+  struct RobotReads {
+    World& world;
+    std::uint64_t readings, clamped;
+    ~RobotReads() {
+      world.robot_reads_.readings += world.readings_taken_ - readings;
+      world.robot_reads_.clamped_readings += world.field_.clamped_readings() - clamped;
+    }
+  } robot_reads{*this, readings_taken_, field_.clamped_readings()};
   std::uint32_t inside = 0;
   std::uint64_t decided = 0;  // sensors whose membership was settled: the point tests
   const std::size_t first_sensor = robots_.size();

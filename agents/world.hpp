@@ -169,8 +169,10 @@ class World final : public net::RadioListener,
   struct TileCounts {
     std::uint64_t readings = 0, point_in_cell_tests = 0, clamped_readings = 0;
   };
+  /// (A tile's own: without the robots' reads, which every tile makes.)
   TileCounts tile_counts() const {
-    return {sensor_readings(), sensor_point_in_cell_tests(), clamped_readings()};
+    return {sensor_readings() - robot_reads_.readings, sensor_point_in_cell_tests(),
+            clamped_readings() - robot_reads_.clamped_readings};
   }
   /// Takes over another tile's sensors (their radio ledger, net/tile_ledger.hpp, and their
   /// counts): this world then reads as the whole run's. At the end of the run.
@@ -271,6 +273,7 @@ class World final : public net::RadioListener,
   std::vector<NodeId> fault_victims(std::size_t fault);
   std::vector<std::vector<NodeId>> fault_victims_;  // [fault]: who it took down
   TileCounts absorbed_;                             // the counts of the tiles this one absorbed
+  TileCounts robot_reads_;  // what the robots read themselves (the oracle), of the counts above
 };
 
 }  // namespace masnet::agents

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 
-#include "protocols/ground_truth.hpp"
-#include "protocols/registry.hpp"
 #include "scenarios/run/tile_bytes.hpp"
 #include "sim/plain_bytes.hpp"
 
@@ -28,8 +26,6 @@ std::string tiles_problem(const ScenarioDef& def, unsigned tiles) {
   // diffusion field, the dispensers, robot groups and the world's own events: each tile runs them
   // whole. A frame that crosses tiles carries the link faults' state and its mobile hearers'
   // verdicts from when it was sent.
-  if (protocols::ground_truth_factory(w.protocol.kind) != nullptr)
-    return "tiles do not run a protocol that reads the ground truth";
   if (w.sensors.size() < tiles) return "more tiles than sensors";
 
   return {};
