@@ -140,90 +140,77 @@ void check_tiles_equal_whole(const ScenarioDef& def) {
   }
 }
 
+// The scenario at `relative` with `overrides`, which the tiles must run, in tiles and whole.
+void check_in_tiles(const std::string& relative, const std::vector<std::string>& overrides) {
+  const ScenarioDef def = load(relative, overrides);
+  REQUIRE(tiles_problem(def, 3).empty());
+  check_tiles_equal_whole(def);
+}
+
 }  // namespace
 
 TEST_CASE("tiles: the scaling benchmark cut into 2 and 3 bands gives every output of the whole run",
           "[scenarios][tiles]") {
   // 10⁴ sensors, 100 robots, samples every 10 ms: the samples between windows read every
   // tile's share of the messages and energy.
-  const ScenarioDef def = load("scenarios/bench/scaling_1e4.yaml",
-                               {"tie_order=origin", "duration=0.06", "output.sample_period=0.01",
-                                "output.trajectory_period=0.01"});
-  REQUIRE(tiles_problem(def, 3).empty());
-  check_tiles_equal_whole(def);
+  check_in_tiles("scenarios/bench/scaling_1e4.yaml",
+                 {"tie_order=origin", "duration=0.06", "output.sample_period=0.01",
+                  "output.trajectory_period=0.01"});
 }
 
 TEST_CASE("tiles: the 10^5 benchmark, briefly, cut into bands gives every output of the whole run",
           "[scenarios][tiles]") {
   // 10⁵ sensors and 1 024 robots for 15 ms: the first reports, discoveries and updates.
-  const ScenarioDef def =
-      load("scenarios/bench/scaling_1e5.yaml",
-           {"tie_order=origin", "duration=0.015", "output.sample_period=0.005"});
-  REQUIRE(tiles_problem(def, 3).empty());
-  check_tiles_equal_whole(def);
+  check_in_tiles("scenarios/bench/scaling_1e5.yaml",
+                 {"tie_order=origin", "duration=0.015", "output.sample_period=0.005"});
 }
 
 TEST_CASE("tiles: the acoustic scenario cut into bands gives every output of the whole run",
           "[scenarios][tiles]") {
-  const ScenarioDef def = load("scenarios/paper/acoustic_tracking.yaml",
-                               {"tie_order=origin", "duration=0.5", "output.snapshots=[0.25]"});
-  REQUIRE(tiles_problem(def, 2).empty());
-  check_tiles_equal_whole(def);
+  check_in_tiles("scenarios/paper/acoustic_tracking.yaml",
+                 {"tie_order=origin", "duration=0.5", "output.snapshots=[0.25]"});
 }
 
 TEST_CASE("tiles: the pollution scenario (diffusion, dispensers, its baseline) in bands",
           "[scenarios][tiles]") {
-  const ScenarioDef def = load("scenarios/paper/pollution_control.yaml",
-                               {"tie_order=origin", "duration=2", "output.snapshots=[1]"});
-  REQUIRE(tiles_problem(def, 3).empty());
-  check_tiles_equal_whole(def);
+  check_in_tiles("scenarios/paper/pollution_control.yaml",
+                 {"tie_order=origin", "duration=2", "output.snapshots=[1]"});
 }
 
 TEST_CASE("tiles: robot groups in formation, and beacons of sensors and robots, in bands",
           "[scenarios][tiles]") {
-  const ScenarioDef groups = load("scenarios/paper/formation_tracking.yaml",
-                                  {"tie_order=origin", "duration=1", "output.snapshots=[0.5]"});
-  REQUIRE(tiles_problem(groups, 3).empty());
-  check_tiles_equal_whole(groups);
-  const ScenarioDef beacons =
-      load("scenarios/examples/beacons.yaml", {"tie_order=origin", "duration=3"});
-  REQUIRE(tiles_problem(beacons, 3).empty());
-  check_tiles_equal_whole(beacons);
+  check_in_tiles("scenarios/paper/formation_tracking.yaml",
+                 {"tie_order=origin", "duration=1", "output.snapshots=[0.5]"});
+  check_in_tiles("scenarios/examples/beacons.yaml", {"tie_order=origin", "duration=3"});
 }
 
 TEST_CASE("tiles: sensors and robots killed and restarted, in bands", "[scenarios][tiles]") {
   // A tenth of the sensors for a second, a disk of them for good, a robot for two seconds.
-  const ScenarioDef def =
-      load("scenarios/paper/acoustic_tracking.yaml",
-           {"tie_order=origin", "duration=3", "output.snapshots=[1.5]",
-            "faults=[{at: 1.0, until: 2.0, kill: sensors, fraction: 0.1}, {at: 1.5, kill: sensors, "
-            "region: {center: [0.3, 0.3], radius: 0.2}}, {at: 0.5, until: 2.5, kill: robots, ids: "
-            "[1]}]"});
-  REQUIRE(tiles_problem(def, 3).empty());
-  check_tiles_equal_whole(def);
+  check_in_tiles(
+      "scenarios/paper/acoustic_tracking.yaml",
+      {"tie_order=origin", "duration=3", "output.snapshots=[1.5]",
+       "faults=[{at: 1.0, until: 2.0, kill: sensors, fraction: 0.1}, {at: 1.5, kill: sensors, "
+       "region: {center: [0.3, 0.3], radius: 0.2}}, {at: 0.5, until: 2.5, kill: robots, ids: "
+       "[1]}]"});
 }
 
 TEST_CASE("tiles: a partition and a degraded area that come and go, in bands",
           "[scenarios][tiles]") {
   // The partition crosses the bands (x = 0.5) and the degraded disk straddles them: frames cross
   // tiles under both, and robots move while those frames wait for the window's end.
-  const ScenarioDef def =
-      load("scenarios/paper/acoustic_tracking.yaml",
-           {"tie_order=origin", "duration=3", "output.snapshots=[1.5]", "radio.loss=0.05",
-            "faults=[{at: 0.6, until: 2.2, partition: {line: [[0.5, 0.0], [0.5, 1.0]]}}, {at: 1.0, "
-            "until: 2.5, degrade: {region: {center: [0.5, 0.5], radius: 0.3}, loss: 0.4}}]"});
-  REQUIRE(tiles_problem(def, 3).empty());
-  check_tiles_equal_whole(def);
+  check_in_tiles(
+      "scenarios/paper/acoustic_tracking.yaml",
+      {"tie_order=origin", "duration=3", "output.snapshots=[1.5]", "radio.loss=0.05",
+       "faults=[{at: 0.6, until: 2.2, partition: {line: [[0.5, 0.0], [0.5, 1.0]]}}, {at: 1.0, "
+       "until: 2.5, degrade: {region: {center: [0.5, 0.5], radius: 0.3}, loss: 0.4}}]"});
 }
 
 TEST_CASE("tiles: the oracle, whose robots read the sensors themselves, in bands",
           "[scenarios][tiles]") {
   // Every tile runs every robot, so every tile makes the robots' reads: counted once.
-  const ScenarioDef def =
-      load("scenarios/paper/acoustic_tracking.yaml",
-           {"tie_order=origin", "duration=2", "output.snapshots=[1]", "protocol.kind=oracle"});
-  REQUIRE(tiles_problem(def, 3).empty());
-  check_tiles_equal_whole(def);
+  check_in_tiles(
+      "scenarios/paper/acoustic_tracking.yaml",
+      {"tie_order=origin", "duration=2", "output.snapshots=[1]", "protocol.kind=oracle"});
 }
 
 TEST_CASE("tiles: what they cannot run yet is refused with the reason", "[scenarios][tiles]") {
