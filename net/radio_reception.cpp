@@ -360,26 +360,36 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
     record_losses_.clear();
     record_destination_loss_ = 0.0;
   }
+  // Recorded under link faults, a mobile hearer is judged once, for the record and for this
+  // tile's booking alike: its loss, kCutOff, or kUnjudged (no record or no link faults).
+  constexpr double kUnjudged = -1.0, kCutOff = -2.0;
   auto record_mobile = [&](NodeId id) {
-    if (!record || (links && link_cut(faults, center, id))) return;
+    if (!record) return kUnjudged;
+    if (!links) {
+      record_mobiles_.push_back(id);
+      return kUnjudged;
+    }
+    if (link_cut(faults, center, id)) return kCutOff;
+    const double loss = link_loss(faults, center, id);
     record_mobiles_.push_back(id);
-    if (links) record_losses_.push_back(link_loss(faults, center, id));
+    record_losses_.push_back(loss);
+    return loss;
   };
   bool reached = false;
   if (is_broadcast) {
     for_each_mobile_within(
         center, range,
         [&](NodeId id) {
-          record_mobile(id);
-          receive(id, hot_[sim::index(id)]);
+          const double judged = record_mobile(id);
+          if (judged != kCutOff) receive(id, hot_[sim::index(id)], judged);
         },
         source, sim::kNoNode);
   } else {
     for_each_mobile_within(
         center, range,
         [&](NodeId id) {
-          record_mobile(id);
-          overhear(id, hot_[sim::index(id)]);
+          const double judged = record_mobile(id);
+          if (judged != kCutOff) overhear(id, hot_[sim::index(id)], judged >= 0.0);
         },
         source, destination, destination_distance);
     // The addressee is decided by its distance, not by the grid's rounding at the boundary.
