@@ -93,6 +93,21 @@ class World::RobotAgent final : public protocols::RobotHost {
   void cancel_timer(protocols::TimerHandle timer) override { world_.simulator_.cancel(timer); }
   void set_target(const Vec2& target) override {
     if (!alive_) return;
+    const sim::Duration delay = world_.actuation_delay_;
+    if (delay.count() > 0) {
+      // The robot keeps its course until it acts (docs/protocols.md, "Actuation delay"); a
+      // robot that went down meanwhile never starts it.
+      const double x = target.x(), y = target.y();
+      const std::uint32_t generation = generation_;
+      world_.simulator_.after(delay, [this, x, y, generation] {
+        if (generation == generation_) steer(Vec2{x, y});
+      });
+      return;
+    }
+    steer(target);
+  }
+  /// Starts towards `target` now.
+  void steer(const Vec2& target) {
     book_motion();
     if (world_.def_.motion.jump_to_target)
       travelled_.distance += (target - state().position).norm();

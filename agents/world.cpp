@@ -83,6 +83,7 @@ World::World(sim::Simulator& simulator, const WorldDef& def)
           protocols::SensorSetup{protocol_context_, def_.protocol.params, &log_})) {
   radio_.set_listener(this);
   radio_.set_mobile_positions(this);
+  actuation_delay_ = sim::seconds(def_.actuation_delay_s);
   const std::uint32_t robot_interest = interest_mask(definition_->robots_hear);
   const std::uint32_t sensor_interest = interest_mask(definition_->sensors_hear);
   robots_.reserve(def_.robots.size());

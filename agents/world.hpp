@@ -61,6 +61,9 @@ struct WorldDef {
   std::vector<SensorDef> sensors;
   std::vector<Vec2> robots;  ///< initial positions (at rest)
   MotionParams motion;
+  /// Seconds between a robot's protocol choosing a new target and the robot starting towards it
+  /// (0: at once).
+  double actuation_delay_s = 0.0;
   FieldDef field;
   double sensor_noise_sigma = 0.0;  ///< additive Gaussian noise on every reading
   net::RadioParams radio;
@@ -258,6 +261,7 @@ class World final : public net::RadioListener,
   std::uint64_t readings_taken_ = 0;
   double uniform_sensor_area_ = 0.0;  // > 0 when every sensor stands for the same area
   WorldObserver* observer_ = nullptr;
+  sim::Duration actuation_delay_{0};  // def_.actuation_delay_s
   std::size_t dead_robots_ = 0, dead_sensors_ = 0;
   std::vector<std::unique_ptr<FollowerAgent>> followers_;
   void add_followers();

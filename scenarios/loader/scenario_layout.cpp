@@ -417,6 +417,7 @@ std::vector<Vec2> read_robots(Section s, const ConvexPolygon& domain, std::uint6
   motion.substep_s = s.number("substep", 1e-3, Range::time());
   motion.jump_to_target =
       s.choice<bool>("dynamics", false, {{"second_order", false}, {"discrete_lloyd", true}});
+  world.actuation_delay_s = s.number("actuation_delay", 0.0, Range::delay());
   world.robot_battery_j = s.number("battery", 0.0, Range::non_negative());
   world.locomotion = read_locomotion(s.section("energy"));
   // Read only when present: a scenario without groups resolves exactly as before.

@@ -280,3 +280,93 @@ TEST_CASE("Locomotion energy is booked per metre and per unit of acceleration", 
   CHECK(metres >= 100.0 * (world.robot_state(0).position - Vec2{0.2, 0.5}).norm() - 1e-9);
   CHECK(world.locomotion_energy_j(0) > 2.0 * metres);
 }
+
+namespace {
+
+// The first update's end and target of robot 0.
+struct FirstUpdate : agents::WorldObserver {
+  double finished_s = -1.0;
+  Vec2 target{0, 0};
+  void on_update(std::size_t, const protocols::UpdateRecord& r) override {
+    if (finished_s >= 0.0) return;
+    finished_s = sim::to_seconds(r.finished);
+    target = r.centroid;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("A robot keeps its course for the actuation delay, then follows the law from there",
+          "[motion]") {
+  // One robot at rest, k = 3, k_v = 1: its first update sends it towards the centroid of the
+  // uniform square. Its updates end every 10 ms; the delay is 4 ms.
+  WorldDef def = still_robots();
+  const Vec2 start{0.2, 0.5};
+  def.robots = {start};
+  def.motion.k = 3.0;
+  def.motion.k_v = 1.0;
+  const double delay_s = 0.004;
+  def.actuation_delay_s = delay_s;
+  sim::Simulator simulator;
+  World world(simulator, def);
+  FirstUpdate first;
+  world.set_observer(&first);
+  world.start();
+  while (first.finished_s < 0.0)
+    simulator.run_until(simulator.now() + sim::seconds(1e-4));
+  const double t_f = first.finished_s;
+  REQUIRE((first.target - start).norm() > 0.1);
+
+  // Until the delay has passed it stands where it was, at rest.
+  simulator.run_until(sim::time_at(t_f + 0.5 * delay_s));
+  CHECK(world.robot_state(0).position == start);
+  CHECK(world.robot_state(0).velocity.norm() == 0.0);
+
+  // Then the damped spring from rest, started at t_f + delay.
+  const double tau = 0.003;
+  simulator.run_until(sim::time_at(t_f + delay_s + tau));
+  const Vec2 p = world.robot_state(0).position;
+  for (int axis = 0; axis < 2; ++axis) {
+    const double x0 = start[axis] - first.target[axis];
+    const double expected = first.target[axis] + agents::damped_spring(3.0, 1.0, x0, 0.0, tau).x;
+    CHECK(p[axis] == Approx(expected).epsilon(1e-9).margin(1e-12));
+  }
+  CHECK((p - start).norm() > 1e-6);  // it did start (the check above is not vacuous)
+}
+
+TEST_CASE("A robot taken down during its actuation delay never starts", "[motion]") {
+  WorldDef def = still_robots();
+  const Vec2 start{0.2, 0.5};
+  def.robots = {start};
+  def.motion.k = 3.0;
+  def.actuation_delay_s = 0.004;
+  sim::Simulator simulator;
+  World world(simulator, def);
+  FirstUpdate first;
+  world.set_observer(&first);
+  world.start();
+  while (first.finished_s < 0.0)
+    simulator.run_until(simulator.now() + sim::seconds(1e-4));
+  world.kill(world.robot_node(0));
+  simulator.run_until(sim::time_at(first.finished_s + 0.1));
+  CHECK(world.robot_state(0).position == start);
+}
+
+TEST_CASE("Without an actuation delay a robot starts at once", "[motion]") {
+  WorldDef def = still_robots();
+  const Vec2 start{0.2, 0.5};
+  def.robots = {start};
+  def.motion.k = 3.0;
+  sim::Simulator simulator;
+  World world(simulator, def);
+  FirstUpdate first;
+  world.set_observer(&first);
+  world.start();
+  while (first.finished_s < 0.0)
+    simulator.run_until(simulator.now() + sim::seconds(1e-4));
+  const double tau = 0.003;
+  simulator.run_until(sim::time_at(first.finished_s + tau));
+  const double x0 = start.x() - first.target.x();
+  CHECK(world.robot_state(0).position.x() ==
+        Approx(first.target.x() + agents::damped_spring(3.0, 1.0, x0, 0.0, tau).x).epsilon(1e-9));
+}

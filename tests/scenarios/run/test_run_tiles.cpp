@@ -171,6 +171,15 @@ TEST_CASE("tiles: the acoustic scenario cut into bands gives every output of the
                  {"tie_order=origin", "duration=0.5", "output.snapshots=[0.25]"});
 }
 
+TEST_CASE("tiles: robots that act one window after choosing a target, in bands",
+          "[scenarios][tiles]") {
+  // The actuation delay of a home-tile run (docs/decisions/0012-partitioned-runs.md): its
+  // delayed course changes are the robots' own events, in every tile alike.
+  check_in_tiles("scenarios/paper/acoustic_tracking.yaml",
+                 {"tie_order=origin", "duration=0.3", "output.snapshots=[0.25]",
+                  "robots.actuation_delay=0.000114"});
+}
+
 TEST_CASE("tiles: the pollution scenario (diffusion, dispensers, its baseline) in bands",
           "[scenarios][tiles]") {
   check_in_tiles("scenarios/paper/pollution_control.yaml",
