@@ -191,19 +191,35 @@ void read_frames(std::span<const std::byte> bytes, std::vector<net::FrameRecord>
 }
 
 std::vector<std::byte> tile_end_bytes(TileEnd& end) {
+  // A ledger is hundreds of megabytes on large runs: the bytes are sized once (no copies as
+  // they grow) and each part of the ledger is freed as soon as it is written, so the ledger and
+  // its bytes are never both held whole.
+  std::size_t size = sizeof end.counts + sizeof end.events + sizeof(std::uint64_t) +
+                     end.streams.size() * sizeof(TileEnd::Stream);
+  end.ledger.for_each_part([&](const auto& part) {
+    using Part = std::decay_t<decltype(part)>;
+    if constexpr (std::is_trivially_copyable_v<Part>)
+      size += sizeof part;
+    else
+      size += sizeof(std::uint64_t) + part.size() * sizeof(typename Part::value_type);
+  });
   std::vector<std::byte> bytes;
+  bytes.reserve(size);
   append_value(bytes, end.counts);
   append_value(bytes, end.events);
   append_value(bytes, static_cast<std::uint64_t>(end.streams.size()));
   sim::append_records(bytes, end.streams.data(), end.streams.size());
-  end.ledger.for_each_part([&](const auto& part) {
-    if constexpr (std::is_trivially_copyable_v<std::decay_t<decltype(part)>>) {
+  end.ledger.for_each_part([&](auto& part) {
+    using Part = std::decay_t<decltype(part)>;
+    if constexpr (std::is_trivially_copyable_v<Part>) {
       append_value(bytes, part);
     } else {
       append_value(bytes, static_cast<std::uint64_t>(part.size()));
       sim::append_records(bytes, part.data(), part.size());
+      Part().swap(part);
     }
   });
+  MASNET_ASSERT(bytes.size() == size, "a tile's end is written in the size computed for it");
   return bytes;
 }
 

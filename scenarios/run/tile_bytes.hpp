@@ -32,6 +32,7 @@ struct TileEnd {
   std::vector<Stream> streams;
   std::uint64_t events = 0;
 };
+/// The bytes of `end`; empties its ledger's vectors on the way (they are freed as written).
 std::vector<std::byte> tile_end_bytes(TileEnd& end);
 TileEnd tile_end_from(std::span<const std::byte> bytes);
 

@@ -122,7 +122,12 @@ TEST_CASE("tile bytes: a tile's end reads back as written", "[scenarios][tiles]"
   end.ledger.tx[3].bytes = 8;
   end.ledger.rx_count = {1, 2, 3, 4};
   end.ledger.rx_bytes = {5, 6, 7, 8};
+  const net::Radio::TileLedger sent = end.ledger;
   const std::vector<std::byte> bytes = tile_end_bytes(end);
+  // Written in one allocation, the ledger's parts freed as they were written.
+  CHECK(bytes.capacity() == bytes.size());
+  CHECK(end.ledger.nodes.capacity() == 0);
+  CHECK(end.ledger.rx_bytes.capacity() == 0);
   TileEnd back = tile_end_from(bytes);
   CHECK(back.counts.readings == 11);
   CHECK(back.counts.point_in_cell_tests == 22);
@@ -134,15 +139,15 @@ TEST_CASE("tile bytes: a tile's end reads back as written", "[scenarios][tiles]"
   CHECK(back.streams[1].stream.untouched());
   CHECK(back.ledger.first_slot == 10);
   CHECK(back.ledger.end_slot == 12);
-  CHECK(back.ledger.totals.tx_j == end.ledger.totals.tx_j);
+  CHECK(back.ledger.totals.tx_j == sent.totals.tx_j);
   CHECK(back.ledger.totals.heard_by_type[3] == 4);
   CHECK(back.ledger.totals.counters[1].rx_bytes == 99);
   REQUIRE(back.ledger.nodes.size() == 2);
   CHECK(back.ledger.nodes[1].lost_count == 6);
   CHECK(back.ledger.senders[0].energy_tx_j == 0.75);
-  CHECK(back.ledger.heard_bytes == end.ledger.heard_bytes);
-  CHECK(back.ledger.overheard_count == end.ledger.overheard_count);
+  CHECK(back.ledger.heard_bytes == sent.heard_bytes);
+  CHECK(back.ledger.overheard_count == sent.overheard_count);
   CHECK(back.ledger.tx[3].bytes == 8);
-  CHECK(back.ledger.rx_count == end.ledger.rx_count);
-  CHECK(back.ledger.rx_bytes == end.ledger.rx_bytes);
+  CHECK(back.ledger.rx_count == sent.rx_count);
+  CHECK(back.ledger.rx_bytes == sent.rx_bytes);
 }
