@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "sim/assert.hpp"
+#include "sim/buffer_capacity.hpp"
 
 namespace masnet::ranks {
 namespace {
@@ -48,6 +49,7 @@ const std::vector<std::vector<std::byte>>& RankExchange::exchange(
   for (int r = 0; r < size_; ++r) {
     const auto k = static_cast<std::size_t>(r);
     inbox_[k].resize(static_cast<std::size_t>(receive_counts_[k]));
+    sim::shrink_if_oversized(inbox_[k]);
     if (receive_counts_[k] > 0)
       MPI_Irecv(inbox_[k].data(), receive_counts_[k], MPI_BYTE, r, kBytesTag, MPI_COMM_WORLD,
                 &requests.emplace_back());

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "scenarios/run/tile_bytes.hpp"
+#include "sim/buffer_capacity.hpp"
 #include "sim/plain_bytes.hpp"
 
 namespace masnet::scenarios {
@@ -84,26 +85,33 @@ void RunTiles::run_until(sim::Time limit) {
 
 void RunTiles::exchange() {
   // Every tile has taken in what was published before this window: publish this window's.
+  // The buffers keep their capacity (a window's frames are megabytes on large networks, and
+  // fresh ones would be fresh pages) unless a burst left them far larger than a window needs.
   for (std::size_t part = 0; part < worlds_.size(); ++part) {
-    published_[first_tile_ + part].clear();
-    std::swap(published_[first_tile_ + part], worlds_[part]->radio().outbox());
+    std::vector<net::FrameRecord>& mine = published_[first_tile_ + part];
+    mine.clear();
+    std::swap(mine, worlds_[part]->radio().outbox());
+    sim::shrink_if_oversized(mine);  // the radio gets this vector back at the next window
   }
   if (link_) {
-    // This rank's frames to every other rank (the buffers keep their capacity: a window's frames
-    // are megabytes on large networks, and fresh ones would be fresh pages); theirs in.
-    frame_bytes_.clear();
-    append_frames(frame_bytes_, published_[first_tile_]);
+    // This rank's frames to every other rank, written once and copied for the rest; theirs in.
+    const std::size_t first_other = first_tile_ == 0 ? 1 : 0;
+    std::vector<std::byte>& bytes = rank_outbox_[first_other];
+    bytes.clear();
+    append_frames(bytes, published_[first_tile_]);
+    sim::shrink_if_oversized(bytes);
     for (std::size_t r = 0; r < tiles_; ++r) {
       if (r == first_tile_)
         rank_outbox_[r].clear();
-      else
-        rank_outbox_[r].assign(frame_bytes_.begin(), frame_bytes_.end());
+      else if (r != first_other)
+        rank_outbox_[r].assign(bytes.begin(), bytes.end());
     }
     const std::vector<std::vector<std::byte>>& inbox = link_->exchange(rank_outbox_);
     for (std::size_t r = 0; r < tiles_; ++r)
       if (r != first_tile_) {
         published_[r].clear();
         read_frames(inbox[r], published_[r]);
+        sim::shrink_if_oversized(published_[r]);
       }
   }
   published_earliest_ = sim::kTimeMax;

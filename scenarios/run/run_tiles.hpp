@@ -86,7 +86,6 @@ class RunTiles {
   // (each on its own thread) while it sends new ones into its radio's outbox.
   std::vector<std::vector<net::FrameRecord>> published_;  // [tile]
   std::vector<std::vector<std::byte>> rank_outbox_;       // [rank], over ranks
-  std::vector<std::byte> frame_bytes_;                    // this rank's frames of a window
   std::uint64_t other_ranks_events_ = 0;
   sim::Time published_earliest_ = sim::kTimeMax;  // the earliest arrival among them
   sim::Duration lookahead_{};
