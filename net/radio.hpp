@@ -220,10 +220,11 @@ class Radio {
   /// arrival is not before now.
   void inject(const FrameRecord& record);
   /// This tile's static nodes (their ledger, counters and traffic) and its share of the totals
-  /// (net/tile_ledger.hpp), and taking another tile's over: after every other tile has been
-  /// absorbed, this radio reads as the whole run's (and the sibling shares are dropped).
+  /// (net/tile_ledger.hpp) — or its slots in [from, to) only, the share with the first — and
+  /// taking another tile's over: after every other tile has been absorbed, this radio reads as
+  /// the whole run's (and the sibling shares are dropped).
   struct TileLedger;
-  TileLedger tile_ledger();
+  TileLedger tile_ledger(std::uint32_t from = 0, std::uint32_t to = 0xFFFFFFFFu);
   void absorb_tile(const TileLedger& tile);
   /// Until then, the totals and energies above add the other tiles' shares, as last handed here
   /// (between windows).

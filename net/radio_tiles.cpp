@@ -56,21 +56,27 @@ void Radio::inject(const FrameRecord& record) {
   deliver(record.arrival, out, record.sent_at, std::move(payload), &record.key);
 }
 
-Radio::TileLedger Radio::tile_ledger() {
+Radio::TileLedger Radio::tile_ledger(std::uint32_t from, std::uint32_t to) {
   MASNET_ASSERT(tiled_, "a tile's ledger");
+  from = std::max(from, owned_first_);
+  to = std::max(from, std::min(to, owned_end_));
   materialize();
   const std::vector<NodeId>& slots = static_slots();
   TileLedger ledger;
-  ledger.first_slot = owned_first_;
-  ledger.end_slot = owned_end_;
-  ledger.totals = static_share_;
-  const std::size_t width = owned_end_ - owned_first_, tx_stride = tx_.size() / type_count_;
+  ledger.first_slot = from;
+  ledger.end_slot = to;
+  if (from == owned_first_) ledger.totals = static_share_;  // once, with the first slots
+  const std::size_t width = to - from, tx_stride = tx_.size() / type_count_;
   const std::size_t rx_stride = heard_bytes_.size();
+  ledger.nodes.reserve(width);
+  ledger.senders.reserve(width);
+  ledger.heard_bytes.reserve(width);
+  ledger.overheard_count.reserve(width);
   ledger.tx.resize(type_count_ * width);
   ledger.rx_count.resize(type_count_ * width);
   ledger.rx_bytes.resize(type_count_ * width);
   for (std::size_t i = 0; i < width; ++i) {
-    const std::size_t k = owned_first_ + i, n = sim::index(slots[k]);
+    const std::size_t k = from + i, n = sim::index(slots[k]);
     ledger.nodes.push_back(nodes_[n]);
     ledger.senders.push_back(senders_[n]);
     ledger.heard_bytes.push_back(heard_bytes_[k]);

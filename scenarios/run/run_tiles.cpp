@@ -100,6 +100,10 @@ void RunTiles::exchange() {
     bytes.clear();
     append_frames(bytes, published_[first_tile_]);
     sim::shrink_if_oversized(bytes);
+    // Over ranks this tile's own records are read by no one once written (a burst's are about a
+    // hundred megabytes), nor are the bytes once sent.
+    published_[first_tile_].clear();
+    sim::shrink_if_oversized(published_[first_tile_], kBurstBytes);
     for (std::size_t r = 0; r < tiles_; ++r) {
       if (r == first_tile_)
         rank_outbox_[r].clear();
@@ -107,6 +111,10 @@ void RunTiles::exchange() {
         rank_outbox_[r].assign(bytes.begin(), bytes.end());
     }
     const std::vector<std::vector<std::byte>>& inbox = link_->exchange(rank_outbox_);
+    for (std::vector<std::byte>& sent : rank_outbox_) {
+      sent.clear();
+      sim::shrink_if_oversized(sent, kBurstBytes);
+    }
     for (std::size_t r = 0; r < tiles_; ++r)
       if (r != first_tile_) {
         published_[r].clear();
@@ -187,35 +195,51 @@ void RunTiles::absorb() {
 }
 
 void RunTiles::absorb_ranks() {
-  // Every other rank sends the first its tile's end: ledger, counts and its sensors' streams.
+  // Every other rank sends the first its tile's end — ledger, counts and its sensors' streams —
+  // in rounds of at most kEndSlotsPerRound slots: a whole ledger is hundreds of megabytes on large
+  // runs, and the first rank would hold it twice (the bytes and what it reads from them). Every
+  // rank knows every band, so all agree on the number of rounds.
   agents::World& world = *worlds_[0];
   std::vector<sim::Fingerprint> streams = simulators_[0]->origin_streams();
-  for (std::vector<std::byte>& bytes : rank_outbox_)
-    bytes.clear();
-  if (first_tile_ != 0) {
-    TileEnd end{world.tile_counts(), world.radio().tile_ledger(), {}, simulators_[0]->events_run()};
-    const std::vector<sim::NodeId>& slots = world.radio().static_slots();
-    for (std::uint32_t k = end.ledger.first_slot; k < end.ledger.end_slot; ++k) {
-      // Untouched ones too: the first rank's entry for a sensor it does not own is not its own.
-      const std::size_t origin = sim::index(slots[k]) + 1;
-      end.streams.push_back({static_cast<std::uint32_t>(origin),
-                             origin < streams.size() ? streams[origin] : sim::Fingerprint{}});
+  const std::vector<sim::NodeId>& slots = world.radio().static_slots();
+  const std::uint64_t slot_count = slots.size();
+  const std::uint64_t widest_band = (slot_count + tiles_ - 1) / tiles_;
+  const std::uint64_t rounds =
+      std::max<std::uint64_t>(1, (widest_band + kEndSlotsPerRound - 1) / kEndSlotsPerRound);
+  const auto band_first = static_cast<std::uint32_t>(slot_count * first_tile_ / tiles_);
+  for (std::uint64_t round = 0; round < rounds; ++round) {
+    for (std::vector<std::byte>& bytes : rank_outbox_)
+      std::vector<std::byte>().swap(bytes);
+    if (first_tile_ != 0) {
+      const std::uint64_t from = band_first + round * kEndSlotsPerRound;
+      TileEnd end{round == 0 ? world.tile_counts() : agents::World::TileCounts{},
+                  world.radio().tile_ledger(
+                      static_cast<std::uint32_t>(std::min(from, slot_count)),
+                      static_cast<std::uint32_t>(std::min(from + kEndSlotsPerRound, slot_count))),
+                  {},
+                  round == 0 ? simulators_[0]->events_run() : 0};
+      for (std::uint32_t k = end.ledger.first_slot; k < end.ledger.end_slot; ++k) {
+        // Untouched ones too: the first rank's entry for a sensor it does not own is not its own.
+        const std::size_t origin = sim::index(slots[k]) + 1;
+        end.streams.push_back({static_cast<std::uint32_t>(origin),
+                               origin < streams.size() ? streams[origin] : sim::Fingerprint{}});
+      }
+      rank_outbox_[0] = tile_end_bytes(end);
     }
-    rank_outbox_[0] = tile_end_bytes(end);
-  }
-  const std::vector<std::vector<std::byte>>& inbox = link_->exchange(rank_outbox_);
-  std::vector<std::byte>().swap(rank_outbox_[0]);  // hundreds of megabytes on large runs
-  if (first_tile_ != 0) return;
-  for (std::size_t r = 1; r < tiles_; ++r) {
-    const TileEnd end = tile_end_from(inbox[r]);
-    for (const TileEnd::Stream& s : end.streams) {
-      if (s.origin >= streams.size()) streams.resize(s.origin + 1);
-      streams[s.origin] = s.stream;
+    const std::vector<std::vector<std::byte>>& inbox = link_->exchange(rank_outbox_);
+    if (first_tile_ != 0) continue;
+    for (std::size_t r = 1; r < tiles_; ++r) {
+      const TileEnd end = tile_end_from(inbox[r]);
+      for (const TileEnd::Stream& s : end.streams) {
+        if (s.origin >= streams.size()) streams.resize(s.origin + 1);
+        streams[s.origin] = s.stream;
+      }
+      other_ranks_events_ += end.events;
+      world.absorb_tile(end.counts, end.ledger);
     }
-    other_ranks_events_ += end.events;
-    world.absorb_tile(end.counts, end.ledger);
   }
-  fingerprint_ = sim::combine_origin_streams(streams);
+  std::vector<std::byte>().swap(rank_outbox_[0]);
+  if (first_tile_ == 0) fingerprint_ = sim::combine_origin_streams(streams);
 }
 
 std::uint64_t RunTiles::events() const {

@@ -84,8 +84,10 @@ class RunTiles {
   std::unique_ptr<sim::WindowedRun> windowed_;
   // Each tile's frames of the last window, read by every other tile at the start of the next
   // (each on its own thread) while it sends new ones into its radio's outbox.
-  std::vector<std::vector<net::FrameRecord>> published_;  // [tile]
-  std::vector<std::vector<std::byte>> rank_outbox_;       // [rank], over ranks
+  std::vector<std::vector<net::FrameRecord>> published_;       // [tile]
+  std::vector<std::vector<std::byte>> rank_outbox_;            // [rank], over ranks
+  static constexpr std::uint64_t kEndSlotsPerRound = 1 << 14;  // a ledger sent in pieces
+  static constexpr std::size_t kBurstBytes = 16 << 20;         // a rank's buffers kept up to this
   std::uint64_t other_ranks_events_ = 0;
   sim::Time published_earliest_ = sim::kTimeMax;  // the earliest arrival among them
   sim::Duration lookahead_{};
