@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "agents/locomotion.hpp"
 #include "agents/world.hpp"
@@ -294,79 +295,68 @@ struct FirstUpdate : agents::WorldObserver {
   }
 };
 
+// One robot at rest at `start`, k = 3, k_v = 1, run until its first update has ended (its
+// updates end every 10 ms): that update sends it towards the centroid of the uniform square.
+struct OneRobotAfterFirstUpdate {
+  static constexpr double kK = 3.0, kKv = 1.0;
+  const Vec2 start{0.2, 0.5};
+  sim::Simulator simulator;
+  std::unique_ptr<World> world;
+  FirstUpdate first;
+  explicit OneRobotAfterFirstUpdate(double actuation_delay_s) {
+    WorldDef def = still_robots();
+    def.robots = {start};
+    def.motion.k = kK;
+    def.motion.k_v = kKv;
+    def.actuation_delay_s = actuation_delay_s;
+    world = std::make_unique<World>(simulator, def);
+    world->set_observer(&first);
+    world->start();
+    while (first.finished_s < 0.0)
+      simulator.run_until(simulator.now() + sim::seconds(1e-4));
+  }
+  // The damped spring's position on `axis`, `tau` after leaving `start` at rest.
+  double law(int axis, double tau) const {
+    const double x0 = start[axis] - first.target[axis];
+    return first.target[axis] + agents::damped_spring(kK, kKv, x0, 0.0, tau).x;
+  }
+};
+
 }  // namespace
 
 TEST_CASE("A robot keeps its course for the actuation delay, then follows the law from there",
           "[motion]") {
-  // One robot at rest, k = 3, k_v = 1: its first update sends it towards the centroid of the
-  // uniform square. Its updates end every 10 ms; the delay is 4 ms.
-  WorldDef def = still_robots();
-  const Vec2 start{0.2, 0.5};
-  def.robots = {start};
-  def.motion.k = 3.0;
-  def.motion.k_v = 1.0;
   const double delay_s = 0.004;
-  def.actuation_delay_s = delay_s;
-  sim::Simulator simulator;
-  World world(simulator, def);
-  FirstUpdate first;
-  world.set_observer(&first);
-  world.start();
-  while (first.finished_s < 0.0)
-    simulator.run_until(simulator.now() + sim::seconds(1e-4));
-  const double t_f = first.finished_s;
-  REQUIRE((first.target - start).norm() > 0.1);
+  OneRobotAfterFirstUpdate run(delay_s);
+  const double t_f = run.first.finished_s;
+  REQUIRE((run.first.target - run.start).norm() > 0.1);
 
   // Until the delay has passed it stands where it was, at rest.
-  simulator.run_until(sim::time_at(t_f + 0.5 * delay_s));
-  CHECK(world.robot_state(0).position == start);
-  CHECK(world.robot_state(0).velocity.norm() == 0.0);
+  run.simulator.run_until(sim::time_at(t_f + 0.5 * delay_s));
+  CHECK(run.world->robot_state(0).position == run.start);
+  CHECK(run.world->robot_state(0).velocity.norm() == 0.0);
 
   // Then the damped spring from rest, started at t_f + delay.
   const double tau = 0.003;
-  simulator.run_until(sim::time_at(t_f + delay_s + tau));
-  const Vec2 p = world.robot_state(0).position;
-  for (int axis = 0; axis < 2; ++axis) {
-    const double x0 = start[axis] - first.target[axis];
-    const double expected = first.target[axis] + agents::damped_spring(3.0, 1.0, x0, 0.0, tau).x;
-    CHECK(p[axis] == Approx(expected).epsilon(1e-9).margin(1e-12));
-  }
-  CHECK((p - start).norm() > 1e-6);  // it did start (the check above is not vacuous)
+  run.simulator.run_until(sim::time_at(t_f + delay_s + tau));
+  const Vec2 p = run.world->robot_state(0).position;
+  for (int axis = 0; axis < 2; ++axis)
+    CHECK(p[axis] == Approx(run.law(axis, tau)).epsilon(1e-9).margin(1e-12));
+  CHECK((p - run.start).norm() > 1e-6);  // it did start (the check above is not vacuous)
 }
 
 TEST_CASE("A robot taken down during its actuation delay never starts", "[motion]") {
-  WorldDef def = still_robots();
-  const Vec2 start{0.2, 0.5};
-  def.robots = {start};
-  def.motion.k = 3.0;
-  def.actuation_delay_s = 0.004;
-  sim::Simulator simulator;
-  World world(simulator, def);
-  FirstUpdate first;
-  world.set_observer(&first);
-  world.start();
-  while (first.finished_s < 0.0)
-    simulator.run_until(simulator.now() + sim::seconds(1e-4));
-  world.kill(world.robot_node(0));
-  simulator.run_until(sim::time_at(first.finished_s + 0.1));
-  CHECK(world.robot_state(0).position == start);
+  OneRobotAfterFirstUpdate run(0.004);
+  run.world->kill(run.world->robot_node(0));
+  run.simulator.run_until(sim::time_at(run.first.finished_s + 0.1));
+  CHECK(run.world->robot_state(0).position == run.start);
 }
 
 TEST_CASE("Without an actuation delay a robot starts at once", "[motion]") {
-  WorldDef def = still_robots();
-  const Vec2 start{0.2, 0.5};
-  def.robots = {start};
-  def.motion.k = 3.0;
-  sim::Simulator simulator;
-  World world(simulator, def);
-  FirstUpdate first;
-  world.set_observer(&first);
-  world.start();
-  while (first.finished_s < 0.0)
-    simulator.run_until(simulator.now() + sim::seconds(1e-4));
+  OneRobotAfterFirstUpdate run(0.0);
   const double tau = 0.003;
-  simulator.run_until(sim::time_at(first.finished_s + tau));
-  const double x0 = start.x() - first.target.x();
-  CHECK(world.robot_state(0).position.x() ==
-        Approx(first.target.x() + agents::damped_spring(3.0, 1.0, x0, 0.0, tau).x).epsilon(1e-9));
+  run.simulator.run_until(sim::time_at(run.first.finished_s + tau));
+  for (int axis = 0; axis < 2; ++axis)
+    CHECK(run.world->robot_state(0).position[axis] ==
+          Approx(run.law(axis, tau)).epsilon(1e-9).margin(1e-12));
 }
