@@ -58,7 +58,7 @@ void Radio::inject(const FrameRecord& record) {
 
 Radio::TileLedger Radio::tile_ledger(std::uint32_t from, std::uint32_t to) {
   MASNET_ASSERT(tiled_, "a tile's ledger");
-  from = std::max(from, owned_first_);
+  from = std::min(std::max(from, owned_first_), owned_end_);
   to = std::max(from, std::min(to, owned_end_));
   materialize();
   const std::vector<NodeId>& slots = static_slots();
