@@ -22,17 +22,19 @@ std::unique_ptr<sim::Simulator> make_simulator(const ScenarioDef& def) {
 }  // namespace
 
 Run::Run(ScenarioDef def, unsigned tiles, unsigned threads, TileLink* link)
-    : def_(std::move(def)),
-      simulator_(make_simulator(def_)),
-      world_(std::make_unique<agents::World>(*simulator_, def_.world)),
-      recorder_(std::make_unique<Recorder>(*world_, def_)) {
-  world_->set_observer(recorder_.get());
+    : def_(std::move(def)), simulator_(make_simulator(def_)) {
+  if (threads == 0) threads = static_cast<unsigned>(sim::allowed_cpu_count());
+  RunTiles::Building others;
   if (tiles > 1) {
     MASNET_ASSERT(tiles_problem(def_, tiles).empty(), "a scenario the tiles run");
-    tiles_ = std::make_unique<RunTiles>(
-        *simulator_, *world_, def_.world, tiles,
-        threads > 0 ? threads : static_cast<unsigned>(sim::allowed_cpu_count()), link);
+    if (!link) others = RunTiles::build_others(def_.world, tiles, threads);
   }
+  world_ = std::make_unique<agents::World>(*simulator_, def_.world);
+  recorder_ = std::make_unique<Recorder>(*world_, def_);
+  world_->set_observer(recorder_.get());
+  if (tiles > 1)
+    tiles_ = std::make_unique<RunTiles>(*simulator_, *world_, def_.world, tiles, threads, link,
+                                        std::move(others));
   if (world_->group_count() > 0) formation_ = std::make_unique<FormationRecorder>(*world_);
 }
 

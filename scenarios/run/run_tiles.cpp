@@ -32,31 +32,59 @@ std::string tiles_problem(const ScenarioDef& def, unsigned tiles) {
   return {};
 }
 
+void RunTiles::own_band(agents::World& world, std::size_t k, std::size_t tiles) {
+  // Bands of equal sensor count in the radio's slot order: rows of a sensor grid.
+  const auto slots = static_cast<std::uint64_t>(world.radio().static_slots().size());
+  world.own_sensor_slots(static_cast<std::uint32_t>(slots * k / tiles),
+                         static_cast<std::uint32_t>(slots * (k + 1) / tiles));
+}
+
+RunTiles::TileWorld RunTiles::make_tile(const agents::WorldDef& def, std::size_t k,
+                                        std::size_t tiles) {
+  TileWorld tile;
+  tile.simulator = std::make_unique<sim::Simulator>();
+  tile.simulator->order_ties_by_origin();
+  tile.world = std::make_unique<agents::World>(*tile.simulator, def);
+  own_band(*tile.world, k, tiles);  // builds the radio's index, the other half of the cost
+  return tile;
+}
+
+RunTiles::Building RunTiles::build_others(const agents::WorldDef& def, unsigned tiles,
+                                          unsigned threads) {
+  Building building;
+  const unsigned workers = std::min(tiles, threads) - 1;  // the caller builds tile 0
+  for (unsigned w = 0; w < workers; ++w)
+    building.push_back(std::async(std::launch::async, [&def, tiles, workers, w] {
+      std::vector<std::pair<std::size_t, TileWorld>> built;
+      for (std::size_t k = 1 + w; k < tiles; k += workers)
+        built.emplace_back(k, make_tile(def, k, tiles));
+      return built;
+    }));
+  return building;
+}
+
 RunTiles::RunTiles(sim::Simulator& simulator, agents::World& world, const agents::WorldDef& def,
-                   unsigned tiles, unsigned threads, TileLink* link)
+                   unsigned tiles, unsigned threads, TileLink* link, Building building)
     : link_(link),
       tiles_(tiles),
       first_tile_(link ? link->rank() : 0),
       lookahead_(sim::seconds(def.radio.latency_s)),
       threads_(link ? 1 : std::clamp(threads, 1u, tiles)) {
   MASNET_ASSERT(!link || (link->size() == tiles && link->rank() < tiles), "one tile per rank");
+  MASNET_ASSERT(!link || building.empty(), "over ranks each process builds its own tile");
   simulators_.push_back(&simulator);
   worlds_.push_back(&world);
-  for (unsigned k = 1; k < tiles && !link; ++k) {
-    Tile tile;
-    tile.simulator = std::make_unique<sim::Simulator>();
-    tile.simulator->order_ties_by_origin();
-    tile.world = std::make_unique<agents::World>(*tile.simulator, def);
-    simulators_.push_back(tile.simulator.get());
-    worlds_.push_back(tile.world.get());
-    others_.push_back(std::move(tile));
-  }
-  // Bands of equal sensor count in the radio's slot order: rows of a sensor grid.
-  const auto slots = static_cast<std::uint64_t>(world.radio().static_slots().size());
-  for (std::size_t part = 0; part < worlds_.size(); ++part) {
-    const std::uint64_t k = first_tile_ + part;
-    worlds_[part]->own_sensor_slots(static_cast<std::uint32_t>(slots * k / tiles),
-                                    static_cast<std::uint32_t>(slots * (k + 1) / tiles));
+  own_band(world, first_tile_, tiles);
+  if (!link) {
+    others_.resize(tiles - 1);
+    for (auto& worker : building)
+      for (auto& [k, tile] : worker.get())
+        others_[k - 1] = std::move(tile);
+    for (std::size_t k = 1; k < tiles; ++k) {
+      if (!others_[k - 1].world) others_[k - 1] = make_tile(def, k, tiles);
+      simulators_.push_back(others_[k - 1].simulator.get());
+      worlds_.push_back(others_[k - 1].world.get());
+    }
   }
   published_.resize(tiles_);
   if (link_) rank_outbox_.resize(tiles_);

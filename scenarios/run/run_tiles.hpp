@@ -8,8 +8,10 @@
 // (a TileLink), each rank runs one tile and the frames and ledgers cross as bytes.
 #include <cstddef>
 #include <cstdint>
+#include <future>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "agents/world.hpp"
@@ -38,12 +40,23 @@ class TileLink {
 
 class RunTiles {
  public:
-  /// Tile 0 is the run's own `simulator` and `world`; makes the others from `def` and gives each
-  /// tile its band of sensors. `threads`: at most one per tile and per allowed processor.
+  /// A tile's own simulator and world, its band of sensors given.
+  struct TileWorld {
+    std::unique_ptr<sim::Simulator> simulator;
+    std::unique_ptr<agents::World> world;
+  };
+  /// The other tiles (1 ...) as they are being built, on up to `threads` − 1 threads: building a
+  /// world of a million sensors takes seconds, which the caller spends building tile 0's.
+  using Building = std::vector<std::future<std::vector<std::pair<std::size_t, TileWorld>>>>;
+  static Building build_others(const agents::WorldDef& def, unsigned tiles, unsigned threads);
+
+  /// Tile 0 is the run's own `simulator` and `world`; takes the others from `building` (or makes
+  /// them from `def`) and gives each tile its band of sensors. `threads`: at most one per tile and
+  /// per allowed processor.
   /// With a `link`: `tiles` is its size, and this process runs tile `link->rank()` alone, in
   /// `simulator` and `world`; after absorb() the first rank's world reads as the whole run's.
   RunTiles(sim::Simulator& simulator, agents::World& world, const agents::WorldDef& def,
-           unsigned tiles, unsigned threads, TileLink* link = nullptr);
+           unsigned tiles, unsigned threads, TileLink* link = nullptr, Building building = {});
   ~RunTiles();
   RunTiles(const RunTiles&) = delete;
   RunTiles& operator=(const RunTiles&) = delete;
@@ -63,10 +76,9 @@ class RunTiles {
   std::uint64_t windows() const { return windowed_ ? windowed_->windows() : 0; }
 
  private:
-  struct Tile {
-    std::unique_ptr<sim::Simulator> simulator;
-    std::unique_ptr<agents::World> world;
-  };
+  /// Tile k of `tiles`, its band set.
+  static TileWorld make_tile(const agents::WorldDef& def, std::size_t k, std::size_t tiles);
+  static void own_band(agents::World& world, std::size_t k, std::size_t tiles);
   void exchange();
   /// Books and delivers into local tile `part` the frames the other tiles sent in the last window.
   void take_in(std::size_t part);
@@ -80,7 +92,7 @@ class RunTiles {
   std::size_t tiles_ = 1, first_tile_ = 0;   // all tiles, and the first one this process runs
   std::vector<sim::Simulator*> simulators_;  // this process's tiles', in tile order
   std::vector<agents::World*> worlds_;
-  std::vector<Tile> others_;  // tiles 1 ...
+  std::vector<TileWorld> others_;  // tiles 1 ...
   std::unique_ptr<sim::WindowedRun> windowed_;
   // Each tile's frames of the last window, read by every other tile at the start of the next
   // (each on its own thread) while it sends new ones into its radio's outbox.
