@@ -30,6 +30,7 @@
 #include "net/vec2.hpp"
 #include "sim/exact_sum.hpp"
 #include "sim/simulator.hpp"
+#include "sim/zeroed_array.hpp"
 
 namespace masnet::net {
 
@@ -420,7 +421,7 @@ class Radio {
   struct TxCounter {
     std::uint64_t count = 0, bytes = 0;  // side by side: a transmission touches one cache line
   };
-  std::vector<TxCounter> tx_;  // [type][node]
+  sim::ZeroedArray<TxCounter> tx_;  // [type][node]; zeroed arrays: unwritten parts cost nothing
   std::array<TypeCounters, kMaxMessageTypes> totals_{};
   // Built-in and registered message types when the radio was built: the per-node counters' stride.
   std::size_t type_count_ = message_type_count();
@@ -432,8 +433,8 @@ class Radio {
   mutable std::uint64_t total_heard_bytes_ = 0;
   // E_rx is linear in bits, so a node's receive energy is E_elec·8·(bytes it heard).
   // `mutable`: bulk bookings are kept as difference arrays over slots and folded in when read.
-  mutable std::vector<std::uint64_t> heard_bytes_, overheard_count_;  // [hot]
-  mutable std::vector<std::uint64_t> rx_count_, rx_bytes_;            // [type][hot]
+  mutable sim::ZeroedArray<std::uint64_t> heard_bytes_, overheard_count_;  // [hot]
+  mutable sim::ZeroedArray<std::uint64_t> rx_count_, rx_bytes_;            // [type][hot]
   // Bulk bookings (sensor grids, no battery): a frame heard by a run of slots [a, c) adds at a
   // and subtracts at c; unsigned wrap-around keeps the folded sums exact.
   // Heard bytes and overheard count packed in one word, so a run end is one write: bytes in the
@@ -442,10 +443,11 @@ class Radio {
   // (checked per frame; past that, fold first).
   static constexpr unsigned kHeardBytesBits = 40;
   static constexpr std::uint64_t kOneOverheard = std::uint64_t{1} << kHeardBytesBits;
-  mutable std::vector<std::uint64_t> heard_diff_;  // [hot + 1]
+  mutable sim::ZeroedArray<std::uint64_t> heard_diff_;  // [hot + 1]
   mutable std::uint64_t pending_bulk_frames_ = 0, pending_bulk_bytes_ = 0;
-  mutable std::vector<std::uint64_t> rx_count_diff_, rx_bytes_diff_;  // [type][hot + 1]
+  mutable sim::ZeroedArray<std::uint64_t> rx_count_diff_, rx_bytes_diff_;  // [type][hot + 1]
   mutable bool diffs_pending_ = false;
+  mutable std::uint32_t bulk_types_ = 0;  // bit = type: the rx diffs that hold bookings
 
   // The overhearing of a bulk unicast: its static hearers' runs, the sender and a static
   // addressee booked out again. Done inline, or (params.overhearing_thread) by a second thread:

@@ -10,10 +10,11 @@ void Radio::prepare_index() {
   // Keep what each node has heard across a rebuild (nodes added after the first frame).
   materialize();
   const std::size_t n_nodes = nodes_.size(), types = type_count_;
-  std::vector<std::uint64_t> heard(n_nodes, 0), overheard(n_nodes, 0), count(n_nodes * types, 0),
-      bytes(n_nodes * types, 0);
-  const std::size_t old_stride = heard_bytes_.size();
-  for (std::size_t n = 0; n < n_nodes; ++n) {
+  const std::size_t old_stride = heard_bytes_.size();  // 0: nothing booked yet
+  const std::size_t kept = old_stride > 0 ? n_nodes : 0;
+  std::vector<std::uint64_t> heard(kept, 0), overheard(kept, 0), count(kept * types, 0),
+      bytes(kept * types, 0);
+  for (std::size_t n = 0; n < kept; ++n) {
     const std::uint32_t hot = hot_[n];
     if (hot == kNoHotIndex) continue;
     heard[n] = heard_bytes_[hot];
@@ -23,12 +24,14 @@ void Radio::prepare_index() {
       bytes[n * types + t] = rx_bytes_[t * old_stride + hot];
     }
   }
-  // Per-type tx counters are by node id with a stride of the node count: re-lay them out.
-  std::vector<TxCounter> tx(n_nodes * types);
+  // Per-type tx counters are by node id with a stride of the node count: re-lay them out. Only
+  // the counts that are not zero are written, here and below: pages never written cost nothing.
+  sim::ZeroedArray<TxCounter> tx(n_nodes * types);
   const std::size_t old_nodes = tx_.size() / types;
   for (std::size_t t = 0; t < types; ++t)
     for (std::size_t n = 0; n < old_nodes; ++n)
-      tx[t * n_nodes + n] = tx_[t * old_nodes + n];
+      if (const TxCounter& sent = tx_[t * old_nodes + n]; sent.count != 0 || sent.bytes != 0)
+        tx[t * n_nodes + n] = sent;
   tx_ = std::move(tx);
   // Sensor grids lie on rows: index them as lines, so frames can be booked run by run.
   std::vector<Vec2> static_positions;
@@ -50,20 +53,23 @@ void Radio::prepare_index() {
   interest_.assign(n_nodes, 0);
   for (std::size_t n = 0; n < n_nodes; ++n)
     interest_[hot_[n]] = nodes_[n].interest;
-  heard_bytes_.assign(n_nodes, 0);
-  overheard_count_.assign(n_nodes, 0);
-  rx_count_.assign(n_nodes * types, 0);
-  rx_bytes_.assign(n_nodes * types, 0);
-  heard_diff_.assign(n_nodes + 1, 0);
-  rx_count_diff_.assign((n_nodes + 1) * types, 0);
-  rx_bytes_diff_.assign((n_nodes + 1) * types, 0);
-  for (std::size_t n = 0; n < n_nodes; ++n) {
+  heard_bytes_ = sim::ZeroedArray<std::uint64_t>(n_nodes);
+  overheard_count_ = sim::ZeroedArray<std::uint64_t>(n_nodes);
+  rx_count_ = sim::ZeroedArray<std::uint64_t>(n_nodes * types);
+  rx_bytes_ = sim::ZeroedArray<std::uint64_t>(n_nodes * types);
+  heard_diff_ = sim::ZeroedArray<std::uint64_t>(n_nodes + 1);
+  rx_count_diff_ = sim::ZeroedArray<std::uint64_t>((n_nodes + 1) * types);
+  rx_bytes_diff_ = sim::ZeroedArray<std::uint64_t>((n_nodes + 1) * types);
+  auto put = [](sim::ZeroedArray<std::uint64_t>& to, std::size_t k, std::uint64_t value) {
+    if (value != 0) to[k] = value;
+  };
+  for (std::size_t n = 0; n < kept; ++n) {
     const std::uint32_t hot = hot_[n];
-    heard_bytes_[hot] = heard[n];
-    overheard_count_[hot] = overheard[n];
+    put(heard_bytes_, hot, heard[n]);
+    put(overheard_count_, hot, overheard[n]);
     for (std::size_t t = 0; t < types; ++t) {
-      rx_count_[t * n_nodes + hot] = count[n * types + t];
-      rx_bytes_[t * n_nodes + hot] = bytes[n * types + t];
+      put(rx_count_, t * n_nodes + hot, count[n * types + t]);
+      put(rx_bytes_, t * n_nodes + hot, bytes[n * types + t]);
     }
   }
   index_dirty_ = false;
@@ -73,26 +79,33 @@ void Radio::materialize() const {
   drain_overhearing();
   if (!diffs_pending_) return;
   const std::size_t n = heard_bytes_.size();
+  // Bookings lie in a tile's own slots only (its runs are cut to them; a run ends one past):
+  // folding there alone leaves the pages of the others' slots unwritten.
+  const std::size_t first = tiled_ ? std::min<std::size_t>(owned_first_, n) : 0;
+  const std::size_t end = tiled_ ? std::min<std::size_t>(owned_end_, n) : n;
   std::uint64_t packed = 0;
-  for (std::size_t k = 0; k < n; ++k) {
+  for (std::size_t k = first; k < end; ++k) {
     packed += heard_diff_[k];
     heard_bytes_[k] += packed & (kOneOverheard - 1);
     overheard_count_[k] += packed >> kHeardBytesBits;
   }
-  std::fill(heard_diff_.begin(), heard_diff_.end(), 0);
+  heard_diff_.zero(first, end + 1);
   pending_bulk_frames_ = pending_bulk_bytes_ = 0;
+  // Only the message types some bulk broadcast booked (the others' rows stay unwritten).
   for (std::size_t t = 0; t < type_count_; ++t) {
+    if (((bulk_types_ >> t) & 1u) == 0) continue;
     std::uint64_t count = 0, bytes = 0;
-    for (std::size_t k = 0; k < n; ++k) {
+    for (std::size_t k = first; k < end; ++k) {
       count += rx_count_diff_[t * (n + 1) + k];
       bytes += rx_bytes_diff_[t * (n + 1) + k];
       rx_count_[t * n + k] += count;
       rx_bytes_[t * n + k] += bytes;
       heard_bytes_[k] += bytes;  // a bulk broadcast's receivers heard what they received
     }
+    rx_count_diff_.zero(t * (n + 1) + first, t * (n + 1) + end + 1);
+    rx_bytes_diff_.zero(t * (n + 1) + first, t * (n + 1) + end + 1);
   }
-  std::fill(rx_count_diff_.begin(), rx_count_diff_.end(), 0);
-  std::fill(rx_bytes_diff_.begin(), rx_bytes_diff_.end(), 0);
+  bulk_types_ = 0;
   diffs_pending_ = false;
 }
 

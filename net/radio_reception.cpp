@@ -263,6 +263,7 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
       }
     } else if (bulk) {
       // A broadcast's bytes heard are its bytes received (folded into both by materialize).
+      bulk_types_ |= 1u << type_index;
       line_index_.for_each_run_within(
           center, range,
           [&](std::uint32_t a, std::uint32_t c) {

@@ -1,0 +1,60 @@
+// ZeroedArray (sim/zeroed_array.hpp): all zero from the start, and the pages of a large one that
+// nobody writes are not in memory (mincore asks the kernel which pages are resident).
+#include <sys/mman.h>
+#include <unistd.h>
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "sim/zeroed_array.hpp"
+
+using masnet::sim::ZeroedArray;
+
+namespace {
+// Whether each page of the array's storage is resident.
+std::vector<bool> resident_pages(const ZeroedArray<std::uint64_t>& array) {
+  const auto page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+  const std::size_t bytes = array.size() * sizeof(std::uint64_t);
+  std::vector<unsigned char> flags((bytes + page - 1) / page);
+  REQUIRE(::mincore(const_cast<std::uint64_t*>(array.data()), bytes, flags.data()) == 0);
+  std::vector<bool> resident;
+  for (const unsigned char f : flags)
+    resident.push_back((f & 1u) != 0);
+  return resident;
+}
+}  // namespace
+
+TEST_CASE("A zeroed array reads zero everywhere, small or mapped, and keeps what is written",
+          "[sim]") {
+  for (const std::size_t size : {std::size_t{10}, std::size_t{1} << 20}) {
+    INFO(size);
+    ZeroedArray<std::uint64_t> array(size);
+    REQUIRE(array.size() == size);
+    std::uint64_t sum = 0;
+    for (const std::uint64_t v : array)
+      sum += v;
+    CHECK(sum == 0);
+    array[3] = 42;
+    array[size - 1] = 7;
+    array.zero(3, 4);
+    CHECK(array[3] == 0);
+    CHECK(array[size - 1] == 7);
+    ZeroedArray<std::uint64_t> moved = std::move(array);
+    CHECK(array.empty());  // NOLINT(bugprone-use-after-move): a moved-from array is empty
+    CHECK(moved[size - 1] == 7);
+  }
+}
+
+TEST_CASE("A large zeroed array takes memory only for the pages written", "[sim]") {
+  ZeroedArray<std::uint64_t> array(std::size_t{1} << 21);  // 16 MiB
+  const auto page_words = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE)) / 8;
+  const std::vector<bool> before = resident_pages(array);
+  CHECK(std::count(before.begin(), before.end(), true) == 0);
+  array[5 * page_words + 1] = 1;
+  const std::vector<bool> after = resident_pages(array);
+  CHECK(std::count(after.begin(), after.end(), true) == 1);
+  CHECK(after[5]);
+}
