@@ -30,8 +30,7 @@ void Radio::prepare_index() {
   const std::size_t old_nodes = tx_.size() / types;
   for (std::size_t t = 0; t < types; ++t)
     for (std::size_t n = 0; n < old_nodes; ++n)
-      if (const TxCounter& sent = tx_[t * old_nodes + n]; sent.count != 0 || sent.bytes != 0)
-        tx[t * n_nodes + n] = sent;
+      tx.fill_in(t * n_nodes + n, tx_[t * old_nodes + n]);
   tx_ = std::move(tx);
   // Sensor grids lie on rows: index them as lines, so frames can be booked run by run.
   std::vector<Vec2> static_positions;
@@ -60,16 +59,13 @@ void Radio::prepare_index() {
   heard_diff_ = sim::ZeroedArray<std::uint64_t>(n_nodes + 1);
   rx_count_diff_ = sim::ZeroedArray<std::uint64_t>((n_nodes + 1) * types);
   rx_bytes_diff_ = sim::ZeroedArray<std::uint64_t>((n_nodes + 1) * types);
-  auto put = [](sim::ZeroedArray<std::uint64_t>& to, std::size_t k, std::uint64_t value) {
-    if (value != 0) to[k] = value;
-  };
   for (std::size_t n = 0; n < kept; ++n) {
     const std::uint32_t hot = hot_[n];
-    put(heard_bytes_, hot, heard[n]);
-    put(overheard_count_, hot, overheard[n]);
+    heard_bytes_.fill_in(hot, heard[n]);
+    overheard_count_.fill_in(hot, overheard[n]);
     for (std::size_t t = 0; t < types; ++t) {
-      put(rx_count_, t * n_nodes + hot, count[n * types + t]);
-      put(rx_bytes_, t * n_nodes + hot, bytes[n * types + t]);
+      rx_count_.fill_in(t * n_nodes + hot, count[n * types + t]);
+      rx_bytes_.fill_in(t * n_nodes + hot, bytes[n * types + t]);
     }
   }
   index_dirty_ = false;

@@ -103,22 +103,17 @@ void Radio::absorb_tile(const TileLedger& tile) {
   const std::vector<NodeId>& slots = static_slots();
   const std::size_t tx_stride = tx_.size() / type_count_, rx_stride = heard_bytes_.size();
   MASNET_ASSERT(nodes_.size() == tx_stride, "the index covers every node");
-  // This radio never booked the absorbed slots: their counters are zero here, and only the
-  // others are written (pages of counters that stay zero cost nothing).
-  auto put = [](sim::ZeroedArray<std::uint64_t>& to, std::size_t k, std::uint64_t value) {
-    if (value != 0) to[k] = value;
-  };
+  // This radio never booked the absorbed slots: their counters are zero here (fill_in).
   for (std::size_t i = 0; i < width; ++i) {
     const std::size_t k = tile.first_slot + i, n = sim::index(slots[k]);
     nodes_[n] = tile.nodes[i];
     senders_[n] = tile.senders[i];
-    put(heard_bytes_, k, tile.heard_bytes[i]);
-    put(overheard_count_, k, tile.overheard_count[i]);
+    heard_bytes_.fill_in(k, tile.heard_bytes[i]);
+    overheard_count_.fill_in(k, tile.overheard_count[i]);
     for (std::size_t t = 0; t < type_count_; ++t) {
-      if (const TxCounter& sent = tile.tx[t * width + i]; sent.count != 0 || sent.bytes != 0)
-        tx_[t * tx_stride + n] = sent;
-      put(rx_count_, t * rx_stride + k, tile.rx_count[t * width + i]);
-      put(rx_bytes_, t * rx_stride + k, tile.rx_bytes[t * width + i]);
+      tx_.fill_in(t * tx_stride + n, tile.tx[t * width + i]);
+      rx_count_.fill_in(t * rx_stride + k, tile.rx_count[t * width + i]);
+      rx_bytes_.fill_in(t * rx_stride + k, tile.rx_bytes[t * width + i]);
     }
   }
   // The tile's share of the totals, as it booked it: the sums of the counters above.

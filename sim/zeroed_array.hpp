@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdlib>
+#include <cstring>
 #include <new>
 #include <type_traits>
 #include <utility>
@@ -60,6 +61,12 @@ class ZeroedArray {
   T* end() { return data_ + size_; }
   const T* begin() const { return data_; }
   const T* end() const { return data_ + size_; }
+  /// Sets element i, which holds zero, to `value`; writes nothing when `value` is zero too, so
+  /// copying counters in leaves the pages of those that stayed zero unwritten.
+  void fill_in(std::size_t i, const T& value) {
+    static constexpr T kZero{};
+    if (std::memcmp(&value, &kZero, sizeof(T)) != 0) data_[i] = value;
+  }
   /// Zeroes [first, last) (and writes nothing else).
   void zero(std::size_t first, std::size_t last) {
     std::fill(data_ + first, data_ + std::max(first, last), T{});

@@ -39,6 +39,10 @@ TEST_CASE("A zeroed array reads zero everywhere, small or mapped, and keeps what
     CHECK(sum == 0);
     array[3] = 42;
     array[size - 1] = 7;
+    array.fill_in(4, 9);
+    array.fill_in(5, 0);
+    CHECK(array[4] == 9);
+    CHECK(array[5] == 0);
     array.zero(3, 4);
     CHECK(array[3] == 0);
     CHECK(array[size - 1] == 7);
