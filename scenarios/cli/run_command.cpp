@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include <CLI/CLI.hpp>
 
@@ -162,14 +163,16 @@ int run_run_command(const RunArgs& args) {
     return kBadInput;
   }
   if (root) print_warnings(loaded->warnings);
-  const ScenarioDef& def = *loaded->scenario;
-  const std::string out =
-      args.out.empty() ? "runs/" + def.name + "-seed" + std::to_string(def.seed) : args.out;
+  // Moved into the run below: a million sensors' definitions are tens of megabytes a copy.
+  ScenarioDef& scenario = *loaded->scenario;
+  const std::string out = args.out.empty()
+                              ? "runs/" + scenario.name + "-seed" + std::to_string(scenario.seed)
+                              : args.out;
   // Refuse before simulating: a long run must not end in "cannot write". Over ranks the first
   // checks and every rank stops if it refuses.
   Logging logging;
   std::string refused;
-  if (root) refused = check_run_directory(out, run_key(def), args.force);
+  if (root) refused = check_run_directory(out, run_key(scenario), args.force);
   if (root && refused.empty()) refused = set_up_run_logging(args, out, logging);
   if (!refused.empty()) std::fprintf(stderr, "masnet run: %s\n", refused.c_str());
   if (!mpi.all(refused.empty())) return kBadInput;
@@ -183,8 +186,7 @@ int run_run_command(const RunArgs& args) {
   // A lone run may use a second core for the radio's overhearing bookkeeping (the same results;
   // sweeps keep their cores for whole runs) when the process may run on two processors: pinned
   // to one (taskset, a cpuset), the two threads would only take turns.
-  ScenarioDef run_def = def;
-  run_def.world.radio.overhearing_thread = overhearing_thread_wanted();
+  scenario.world.radio.overhearing_thread = overhearing_thread_wanted();
   // With one allowed processor the tiles would only take turns on it, each running every robot:
   // the run in one piece gives the same outputs sooner (ranks bring their own processors).
   const unsigned tiles = over_ranks || masnet::sim::allowed_cpu_count() >= 2 ? wanted_tiles : 1;
@@ -200,7 +202,8 @@ int run_run_command(const RunArgs& args) {
                    host.ranks, host.processors);
   }
   const std::unique_ptr<TileLink> link = mpi.tile_link();
-  Run run(run_def, tiles, 0, link.get());
+  Run run(std::move(scenario), tiles, 0, link.get());
+  const ScenarioDef& def = run.def();
   try {
     // Log lines on the terminal would break into the progress line: one or the other.
     ProgressBar bar(def.duration_s, root && !args.quiet && !logging.shows_on_terminal &&

@@ -27,6 +27,8 @@ class Run {
   /// with a `link`, over its ranks instead, one tile each (the first rank's run is the whole).
   explicit Run(ScenarioDef def, unsigned tiles = 1, unsigned threads = 0, TileLink* link = nullptr);
   ~Run();
+  /// The scenario it runs (moved in: hold on to this rather than a copy).
+  const ScenarioDef& def() const { return def_; }
 
   /// Simulates the whole duration; `watcher` (may be null) sees it as it happens.
   void execute(const ProgressFn& progress = {}, RunWatcher* watcher = nullptr);

@@ -4,6 +4,7 @@
 #include <condition_variable>
 #include <deque>
 #include <mutex>
+#include <utility>
 
 #include <boost/asio/post.hpp>
 #include <boost/asio/thread_pool.hpp>
@@ -44,8 +45,8 @@ RunResult execute_sweep_run(const SweepDef& sweep, const RunSpec& run, const std
         result.error += (result.error.empty() ? "" : "\n") + d.text();
       return result;
     }
-    const ScenarioDef& def = *loaded.scenario;
-    Run simulation(def);
+    Run simulation(std::move(*loaded.scenario));
+    const ScenarioDef& def = simulation.def();
     simulation.execute();
     result.summary = simulation.summary();
     if (sweep.keep_runs) {
