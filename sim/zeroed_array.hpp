@@ -1,10 +1,9 @@
 #pragma once
 // A fixed-size array of plain values that starts all zero without writing them. Large arrays are
 // mapped anonymous memory: the kernel hands out a page on its first write, so the parts a run
-// never writes cost no memory. (A tile's radio keeps counters for every node of the network and
-// books only its own band; a run in one piece never books most message types at its sensors.)
-#include <sys/mman.h>
-
+// never writes cost no memory (counted in 2 MiB pages where it gives huge ones:
+// sim/huge_pages.hpp). A tile's radio keeps counters for every node of the network and books
+// only its own band; a run in one piece never books most message types at its sensors.
 #include <algorithm>
 #include <cstddef>
 #include <cstdlib>
@@ -12,6 +11,8 @@
 #include <new>
 #include <type_traits>
 #include <utility>
+
+#include "sim/huge_pages.hpp"
 
 namespace masnet::sim {
 
@@ -28,9 +29,8 @@ class ZeroedArray {
   explicit ZeroedArray(std::size_t size) : size_(size) {
     if (size == 0) return;
     if (bytes() >= kMappedBytes) {
-      void* p =
-          ::mmap(nullptr, bytes(), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-      if (p == MAP_FAILED) throw std::bad_alloc();
+      void* p = map_zeroed_region(bytes());
+      if (p == nullptr) throw std::bad_alloc();
       data_ = static_cast<T*>(p);
     } else {
       data_ = static_cast<T*>(std::calloc(size, sizeof(T)));
@@ -77,7 +77,7 @@ class ZeroedArray {
   void release() {
     if (data_ == nullptr) return;
     if (bytes() >= kMappedBytes)
-      ::munmap(data_, bytes());
+      unmap_zeroed_region(data_, bytes());
     else
       std::free(data_);
     data_ = nullptr;
