@@ -92,17 +92,11 @@ World::World(sim::Simulator& simulator, const WorldDef& def)
     radio_.add_mobile_node(robot_node(i), robot_key(i));
     radio_.set_interest(robot_node(i), robot_interest);
   }
-  std::vector<Vec2> positions;
-  std::vector<NodeId> ids;
   for (std::size_t s = 0; s < def_.sensors.size(); ++s) {
     radio_.add_static_node(sensor_node(s), def_.sensors[s].position, sensor_key(s));
     radio_.set_interest(sensor_node(s), sensor_interest);
-    positions.push_back(def_.sensors[s].position);
-    ids.push_back(sensor_node(s));
   }
   add_followers();
-  sensor_grid_.build(positions, ids);
-  sensor_lines_.build(positions, ids);  // empty unless the sensors lie on rows
   if (!def_.sensors.empty()) {
     uniform_sensor_area_ = def_.sensors.front().area;
     for (const SensorDef& s : def_.sensors)
@@ -124,9 +118,28 @@ World::World(sim::Simulator& simulator, const WorldDef& def)
     diffusion_ = std::make_unique<DiffusionField>(def_.field.diffusion);
   spray_rate_.assign(robots_.size(), 0.0);
   neutraliser_used_.assign(robots_.size(), 0.0);
+  // The radio indexes the sensors by rows anyway (they are its static nodes, in the same order):
+  // the oracle's pass reads that index instead of a copy of its own.
+  sensor_lines_ = &radio_.static_lines();
 }
 
 World::~World() = default;
+
+const net::SpatialGrid& World::sensor_grid() const {
+  if (!sensor_grid_built_) {
+    std::vector<Vec2> positions;
+    std::vector<NodeId> ids;
+    positions.reserve(def_.sensors.size());
+    ids.reserve(def_.sensors.size());
+    for (std::size_t s = 0; s < def_.sensors.size(); ++s) {
+      positions.push_back(def_.sensors[s].position);
+      ids.push_back(sensor_node(s));
+    }
+    sensor_grid_.build(positions, ids);
+    sensor_grid_built_ = true;
+  }
+  return sensor_grid_;
+}
 
 void World::start() {
   // Each node's first events are scheduled acting as the node (the kernel's origin order:
@@ -239,7 +252,7 @@ double World::spray_rate(std::size_t robot) const {
   std::size_t count = 0;
   if (d.readings == SprayReadings::live) {
     const protocols::ConvexPolygon& cell = protocol.cell();
-    sensor_grid_.for_each_within(p, d.spray_radius, [&](NodeId id, const Vec2& s, double) {
+    sensor_grid().for_each_within(p, d.spray_radius, [&](NodeId id, const Vec2& s, double) {
       if (!protocols::contains(cell, s) || (dead_sensors_ > 0 && !radio_.alive(id))) return;
       sum += diffusion_->value_at(s);
       ++count;
@@ -363,18 +376,18 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
     accumulator.add(s, sensor_reading(sensor, s), def_.sensors[sensor].area);
     ++inside;
   };
-  if (!sensor_lines_.empty()) slicer_.reset(cell);
-  if (sensor_lines_.empty() || !slicer_.valid()) {  // no rows, or not a proper polygon
+  if (!sensor_lines_->empty()) slicer_.reset(cell);
+  if (sensor_lines_->empty() || !slicer_.valid()) {  // no rows, or not a proper polygon
     Vec2 lo = cell.vertices[0], hi = cell.vertices[0];
     for (const Vec2& v : cell.vertices) {
       lo = lo.cwiseMin(v);
       hi = hi.cwiseMax(v);
     }
-    sensor_grid_.for_each_within(0.5 * (lo + hi), 0.5 * (hi - lo).norm(),
-                                 [&](NodeId id, const Vec2& s, double) {
-                                   ++decided;
-                                   if (protocols::contains(cell, s)) take(id, s);
-                                 });
+    sensor_grid().for_each_within(0.5 * (lo + hi), 0.5 * (hi - lo).norm(),
+                                  [&](NodeId id, const Vec2& s, double) {
+                                    ++decided;
+                                    if (protocols::contains(cell, s)) take(id, s);
+                                  });
     if (work) work->point_in_cell_tests += decided;
     return inside;
   }
@@ -388,23 +401,23 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
   // estimates when no sensor is near either end (LineIndex::sure_slots): all of them are inside,
   // and the guard of 2·margin puts every other sensor beyond the exact ends, outside.
   const bool sure_rows =
-      sensor_lines_.slot_estimates_are_sure(slicer_.max_abs_x() + 2.0 * margin, 2.0 * margin);
+      sensor_lines_->slot_estimates_are_sure(slicer_.max_abs_x() + 2.0 * margin, 2.0 * margin);
   pending_rows_.clear();
-  sensor_lines_.for_each_line_between(
+  sensor_lines_->for_each_line_between(
       slicer_.y_min(), slicer_.y_max(),
       [&](std::size_t line, double y, std::uint32_t begin, std::uint32_t end) {
         const auto [xl, xr] = slicer_.extent(y);
         if (!(xl <= xr + 2.0 * margin)) return;
         std::uint32_t a, c;
         const bool sure = sure_rows && xl + margin <= xr - margin &&
-                          sensor_lines_.sure_slots(line, xl + margin, xr - margin, a, c);
+                          sensor_lines_->sure_slots(line, xl + margin, xr - margin, a, c);
         if (!sure) {  // the exact search starts one slot before the guess and ends one past the
                       // right end
-          a = sensor_lines_.guess_at_or_after(line, xl - margin);
-          c = sensor_lines_.guess_at_or_after(line, xr);
+          a = sensor_lines_->guess_at_or_after(line, xl - margin);
+          c = sensor_lines_->guess_at_or_after(line, xr);
         }
-        __builtin_prefetch(&sensor_lines_.x(a > begin ? a - 1 : begin));
-        __builtin_prefetch(&sensor_lines_.x(c < end ? c : end - 1));
+        __builtin_prefetch(&sensor_lines_->x(a > begin ? a - 1 : begin));
+        __builtin_prefetch(&sensor_lines_->x(c < end ? c : end - 1));
         // Field by field into the vector: a temporary copied in whole makes the compiler reload
         // it across two stores, which the CPU cannot forward (a stall per row).
         PendingRow& row = pending_rows_.emplace_back();
@@ -419,18 +432,18 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
   const bool row_wise = def_.sensor_noise_sigma <= 0.0 && uniform_sensor_area_ > 0.0 &&
                         !diffusion_ && dead_sensors_ == 0;
   const std::optional<double> uniform = field_.uniform_value();
-  const std::vector<NodeId>& ids = sensor_lines_.ids();
+  const std::vector<NodeId>& ids = sensor_lines_->ids();
   for (const PendingRow& row : pending_rows_) {
     const double y = row.y, xl = row.left, xr = row.right;
     std::uint32_t first = row.first, last = row.last;
     if (!row.sure) {
       // Candidates: x in [xl − margin, xr + margin] (and a hair more on the right, tested).
-      first = sensor_lines_.first_at_or_after(row.line, xl - margin);
-      last = sensor_lines_.first_at_or_after(row.line, xr + 2.0 * margin);
+      first = sensor_lines_->first_at_or_after(row.line, xl - margin);
+      last = sensor_lines_->first_at_or_after(row.line, xr + 2.0 * margin);
       // Every candidate is settled: by the ends' tests or, between them, by convexity.
       decided += last > first ? last - first : 0;
       auto inside_at = [&](std::uint32_t k) {
-        return slicer_.contains_on_row(cell.vertices, Vec2{sensor_lines_.x(k), y}, xl, xr);
+        return slicer_.contains_on_row(cell.vertices, Vec2{sensor_lines_->x(k), y}, xl, xr);
       };
       // Exact at the ends; everything between is inside (convexity).
       while (first < last && !inside_at(first))
@@ -443,7 +456,7 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
     // Without noise and with equal areas a reading needs only the position: evaluate the row in
     // one call and stream through its coordinates, never touching per-sensor records.
     if (row_wise && uniform) {
-      accumulator.add_row_uniform(y, &sensor_lines_.x(first), last - first, *uniform,
+      accumulator.add_row_uniform(y, &sensor_lines_->x(first), last - first, *uniform,
                                   uniform_sensor_area_);
       readings_taken_ += last - first;
       inside += last - first;
@@ -451,16 +464,16 @@ std::uint32_t World::read_sensors_in(const protocols::ConvexPolygon& cell,
     }
     if (row_wise) {
       row_buffer_.resize(last - first);
-      field_.row_values(y, &sensor_lines_.x(first), last - first, sim::to_seconds(simulator_.now()),
-                        row_buffer_.data());
-      accumulator.add_row(y, &sensor_lines_.x(first), row_buffer_.data(), last - first,
+      field_.row_values(y, &sensor_lines_->x(first), last - first,
+                        sim::to_seconds(simulator_.now()), row_buffer_.data());
+      accumulator.add_row(y, &sensor_lines_->x(first), row_buffer_.data(), last - first,
                           uniform_sensor_area_);
       readings_taken_ += last - first;
       inside += last - first;
       continue;
     }
     for (std::uint32_t k = first; k < last; ++k)
-      take(ids[k], Vec2{sensor_lines_.x(k), y});
+      take(ids[k], Vec2{sensor_lines_->x(k), y});
   }
   if (work) work->point_in_cell_tests += decided;
   return inside;

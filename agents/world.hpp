@@ -13,6 +13,7 @@
 #include "agents/faults.hpp"
 #include "agents/formation.hpp"
 #include "agents/robot_motion.hpp"
+#include "agents/sensor_list.hpp"
 #include "net/line_index.hpp"
 #include "net/radio.hpp"
 #include "protocols/ground_truth.hpp"
@@ -24,12 +25,6 @@
 namespace masnet::agents {
 
 using sim::NodeId;
-
-struct SensorDef {
-  Vec2 position{0, 0};
-  double area = 0.0;       ///< the part of Ω this sensor stands for (world units²)
-  double battery_j = 0.0;  ///< its own battery; 0: the sensors' battery (WorldDef)
-};
 
 /// Periodic BEACON traffic (the demo scenario): every sender broadcasts once per period at a
 /// seeded phase.
@@ -58,7 +53,7 @@ struct DispenserDef {
 struct WorldDef {
   std::uint64_t seed = 1;
   protocols::ConvexPolygon domain;
-  std::vector<SensorDef> sensors;
+  SensorList sensors;        ///< shared by the copies of this definition
   std::vector<Vec2> robots;  ///< initial positions (at rest)
   MotionParams motion;
   /// Seconds between a robot's protocol choosing a new target and the robot starting towards it
@@ -245,8 +240,12 @@ class World final : public net::RadioListener,
   std::vector<std::unique_ptr<RobotAgent>> robots_;
   std::vector<std::uint32_t> sensor_read_counts_;  // keys the noise draws
   std::vector<double> still_field_values_;         // per sensor, NaN until read; empty unless still
-  net::SpatialGrid sensor_grid_;
-  net::LineIndex sensor_lines_;  // the oracle's scanline pass over sensor rows
+  // The sensors by cell, built on first use (the dispensers, sensors off rows): runs on rows
+  // never need it, and a million sensors' grid is 21 MB.
+  const net::SpatialGrid& sensor_grid() const;
+  mutable net::SpatialGrid sensor_grid_;
+  mutable bool sensor_grid_built_ = false;
+  const net::LineIndex* sensor_lines_ = nullptr;  // the radio's, for the oracle's scanline pass
   std::vector<double> row_buffer_;
   protocols::RowSlicer slicer_;
   struct PendingRow {

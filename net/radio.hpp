@@ -114,11 +114,9 @@ class Radio {
   ~Radio();
   Radio(const Radio&) = delete;
   Radio& operator=(const Radio&) = delete;
-
   /// Registers node ids densely from 0: a static node at `position`, or a mobile node whose
-  /// position `mobile_positions` answers. `random_key` keys this node's loss and jitter
-  /// draws; give a key that does not change when other nodes are added (the world uses
-  /// role and index).
+  /// position `mobile_positions` answers. `random_key` keys this node's loss and jitter draws;
+  /// give a key that does not change when other nodes are added (the world: role and index).
   void add_static_node(NodeId id, const Vec2& position, std::uint64_t random_key);
   void add_mobile_node(NodeId id, std::uint64_t random_key);
   void set_listener(RadioListener* listener) { listener_ = listener; }
@@ -215,6 +213,8 @@ class Radio {
   void own_static_slots(std::uint32_t first, std::uint32_t end);
   /// Static nodes in slot order (rows of a sensor grid): tiles own contiguous slots.
   const std::vector<NodeId>& static_slots();
+  /// The static nodes' index by rows, up to date (empty unless they lie on rows).
+  const LineIndex& static_lines();
   bool owns(NodeId node) const;
   std::vector<FrameRecord>& outbox() { return outbox_; }
   /// Another tile's frame: books and delivers it to this tile's nodes. Precondition: its

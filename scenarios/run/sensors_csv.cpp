@@ -10,8 +10,7 @@
 
 namespace masnet::scenarios {
 
-void write_sensors_csv(const std::filesystem::path& path,
-                       const std::vector<agents::SensorDef>& sensors) {
+void write_sensors_csv(const std::filesystem::path& path, const agents::SensorList& sensors) {
   OutputFile out(path);
   out.print("index,x,y,area\n");
   // Compiled formats into a buffer written in large pieces (a million sensors: 27 MB).

@@ -10,7 +10,6 @@ namespace masnet::scenarios {
 
 /// Writes sensors.csv: index, x, y (world units) and area (world units², the part of Ω the
 /// sensor stands for), one row per sensor in the order of snapshots.json's readings.
-void write_sensors_csv(const std::filesystem::path& path,
-                       const std::vector<agents::SensorDef>& sensors);
+void write_sensors_csv(const std::filesystem::path& path, const agents::SensorList& sensors);
 
 }  // namespace masnet::scenarios

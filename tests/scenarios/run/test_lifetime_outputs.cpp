@@ -162,8 +162,8 @@ TEST_CASE("lifetime of a three-node layout with small batteries equals the hand 
                           "robots.positions=[[0.5, 0.5]]", "beacons.senders=none", "radio.loss=0",
                           "radio.energy.idle_power=0.5", "output.sample_period=0.5"});
   REQUIRE(def.world.sensors.size() == 2);
-  def.world.sensors[0].battery_j = 0.5;
-  def.world.sensors[1].battery_j = 1.5;
+  def.world.sensors.edit(0).battery_j = 0.5;
+  def.world.sensors.edit(1).battery_j = 1.5;
   def.world.robot_battery_j = 2.0;
   agents::FaultDef fault;
   fault.at_s = 2.0;
