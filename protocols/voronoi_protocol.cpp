@@ -88,7 +88,18 @@ void VoronoiProtocol::on_tick() {
 }
 
 void VoronoiProtocol::begin_update() {
+  // A fresh record that keeps the last one's buffers: freeing them here (written an update ago,
+  // long gone from the caches) and allocating anew cost about 2 % of the 10⁶ benchmark.
+  std::vector<Vec2> vertices = std::move(record_.cell.vertices);
+  std::vector<NodeId> neighbours = std::move(record_.neighbours);
+  std::vector<HeardRobot> heard = std::move(record_.heard);
   record_ = UpdateRecord{};
+  vertices.clear();
+  neighbours.clear();
+  heard.clear();
+  record_.cell.vertices = std::move(vertices);
+  record_.neighbours = std::move(neighbours);
+  record_.heard = std::move(heard);
   record_.robot = host_.id();
   record_.update = ++update_;
   record_.started = host_.now();
