@@ -39,7 +39,6 @@ class SensorList {
   // writer, so there is no non-const operator[] that would detach on a mere read.
   SensorDef& edit(std::size_t i) { return own()[i]; }
   void push_back(const SensorDef& sensor) { own().push_back(sensor); }
-  void reserve(std::size_t n) { own().reserve(n); }
   void clear() { list_.reset(); }
 
  private:

@@ -148,7 +148,9 @@ class Radio {
   void for_each_mobile_within(const Vec2& center, double range, Visit&& visit) {
     for_each_mobile_within(center, range, std::forward<Visit>(visit), sim::kNoNode, sim::kNoNode);
   }
-
+  /// The static nodes' index by rows, up to date (empty unless they lie on rows): the world's
+  /// sensing pass reads it instead of indexing the same points again.
+  const LineIndex& static_lines();
   std::size_t node_count() const { return nodes_.size(); }
   const RadioParams& params() const { return params_; }
   /// Frames of one type sent and received (as addressee) by `node`.
@@ -213,8 +215,6 @@ class Radio {
   void own_static_slots(std::uint32_t first, std::uint32_t end);
   /// Static nodes in slot order (rows of a sensor grid): tiles own contiguous slots.
   const std::vector<NodeId>& static_slots();
-  /// The static nodes' index by rows, up to date (empty unless they lie on rows).
-  const LineIndex& static_lines();
   bool owns(NodeId node) const;
   std::vector<FrameRecord>& outbox() { return outbox_; }
   /// Another tile's frame: books and delivers it to this tile's nodes. Precondition: its

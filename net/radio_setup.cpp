@@ -72,6 +72,11 @@ void Radio::add_mobile_node(NodeId id, std::uint64_t random_key) {
   add_node(id, node, true, Vec2{0, 0});
 }
 
+const LineIndex& Radio::static_lines() {
+  if (index_dirty_) prepare_index();
+  return line_index_;
+}
+
 void Radio::nodes_within(const Vec2& center, double range, NodeId skip, std::vector<NodeId>& out) {
   if (index_dirty_) prepare_index();
   out.clear();

@@ -15,11 +15,6 @@ const std::vector<NodeId>& Radio::static_slots() {
   return use_lines_ ? line_index_.ids() : static_grid_.ids();
 }
 
-const LineIndex& Radio::static_lines() {
-  if (index_dirty_) prepare_index();
-  return line_index_;
-}
-
 void Radio::own_static_slots(std::uint32_t first, std::uint32_t end) {
   MASNET_ASSERT(simulator_.ties_by_origin(), "tiles run in the origin order");
   MASNET_ASSERT(!contended_ && params_.jitter_s <= 0 && !any_battery_ && !link_faults_.any(),
