@@ -49,7 +49,7 @@ bool ContendedMedium::send(NodeId source, NodeId destination, double range, Payl
   }
   const std::size_t source_index = sim::index(source);
   if (radio_.guarded() && !radio_.nodes_[source_index].alive) {
-    ++radio_.nodes_[source_index].refused_count;
+    ++radio_.life_to_write(source_index).refused_count;
     radio_.mix_refusal(source);
     return false;
   }
@@ -266,7 +266,7 @@ void ContendedMedium::begin_transmission(NodeId node, const Frame& frame, bool i
   if (!frame.is_broadcast() && !is_ack &&
       std::none_of(tx.receptions.begin(), tx.receptions.end(),
                    [&](const Reception& r) { return r.receiver == frame.destination; }))
-    ++radio_.nodes_[node_index].unreachable_count;
+    ++radio_.life_to_write(node_index).unreachable_count;
   on_air_.push_back(slot);
   sim::Fingerprint& traffic = radio_.senders_[node_index].traffic;
   traffic.mix(static_cast<std::uint64_t>(sim::to_ns(now)));
@@ -344,7 +344,7 @@ void ContendedMedium::end_transmission(std::uint32_t index) {
     } else if (fate == 2) {
       ++by_node.channel_lost;
       ++totals_[type_index].channel_lost;
-      ++radio_.nodes_[sim::index(r.receiver)].lost_count;
+      ++radio_.life_to_write(sim::index(r.receiver)).lost_count;
       ++lost;
     } else {
       ++received;

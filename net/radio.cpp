@@ -97,9 +97,9 @@ const Radio::NearAddressee* Radio::near_addressee(NodeId addressee, double exten
 double Radio::idle_j(NodeId id) const {
   const EnergyParams& e = params_.energy;
   if (e.idle_power_w <= 0) return 0.0;
-  const Node& node = nodes_[sim::index(id)];
-  const sim::Time until = std::min(simulator_.now(), node.died_at);
-  double idle_s = node.earlier_lives_s + sim::to_seconds(until - node.added_at);
+  const NodeLife& life = life_of(sim::index(id));
+  const sim::Time until = std::min(simulator_.now(), died_at(sim::index(id)));
+  double idle_s = life.earlier_lives_s + sim::to_seconds(until - life.added_at);
   if (e.model == EnergyModel::states) {
     // Idle is what is left of its life after sending and receiving.
     const std::uint32_t hot = hot_[sim::index(id)];
@@ -118,9 +118,9 @@ double Radio::consumed_j(NodeId id) const {
 
 bool Radio::afford(NodeId id, double energy_j) {
   // Only with a battery: a node that cannot pay for a frame is empty and stops.
-  Node& node = nodes_[sim::index(id)];
-  if (!node.alive) return false;
-  if (node.battery_j > 0 && node.battery_j - consumed_j(id) < energy_j) {
+  if (!nodes_[sim::index(id)].alive) return false;
+  const double battery_j = life_of(sim::index(id)).battery_j;
+  if (battery_j > 0 && battery_j - consumed_j(id) < energy_j) {
     kill(id);
     return false;
   }
@@ -128,20 +128,22 @@ bool Radio::afford(NodeId id, double energy_j) {
 }
 
 void Radio::schedule_depletion(NodeId id) {
-  Node& node = nodes_[sim::index(id)];
-  if (node.battery_j <= 0 || !node.alive) return;
-  const std::uint32_t hot = hot_[sim::index(id)];
+  const std::size_t n = sim::index(id);
+  const double battery_j = life_of(n).battery_j;
+  if (battery_j <= 0 || !nodes_[n].alive) return;
+  const std::uint32_t hot = hot_[n];
   const double remaining =
-      node.battery_j - senders_[sim::index(id)].energy_tx_j - idle_j(id) -
+      battery_j - senders_[n].energy_tx_j - idle_j(id) -
       (hot == kNoHotIndex
            ? 0.0
            : rx_energy_j(params_.energy, 8.0 * static_cast<double>(heard_bytes_[hot])));
-  simulator_.cancel(node.depletion_event);
+  if (depletion_events_.size() < nodes_.size()) depletion_events_.resize(nodes_.size());
+  simulator_.cancel(depletion_events_[n]);
   // The idle drain empties the battery at a known time: a scheduled event, not a poll. Any
   // node's frame may move it (receptions are booked when sent), so in the origin order its key
   // names only the node (docs/decisions/0012-partitioned-runs.md).
   const sim::Duration left = sim::seconds(std::max(remaining, 0.0) / params_.energy.idle_power_w);
-  node.depletion_event = simulator_.at_instant_end(sim::origin_of(id), simulator_.now() + left,
+  depletion_events_[n] = simulator_.at_instant_end(sim::origin_of(id), simulator_.now() + left,
                                                    [this, id] { kill(id); });
 }
 
@@ -155,36 +157,37 @@ void Radio::kill(NodeId id) {  // the battery is empty
   Node& node = nodes_[sim::index(id)];
   if (!node.alive) return;
   node.alive = false;
-  node.died_at = simulator_.now();
-  simulator_.cancel(node.depletion_event);
+  life_to_write(sim::index(id)).died_at = simulator_.now();
+  cancel_depletion(sim::index(id));
   if (listener_) listener_->on_battery_empty(id);
 }
 
 void Radio::set_battery(NodeId id, double battery_j) {
-  Node& node = nodes_[sim::index(id)];
-  node.battery_j = battery_j;
+  if (battery_j != life_of(sim::index(id)).battery_j)
+    life_to_write(sim::index(id)).battery_j = battery_j;
   if (battery_j > 0) any_battery_ = true;
   if (battery_j > 0 && params_.energy.idle_power_w > 0)
     schedule_depletion(id);
   else
-    simulator_.cancel(node.depletion_event);
+    cancel_depletion(sim::index(id));
 }
 
 void Radio::take_down(NodeId id) {
   Node& node = nodes_[sim::index(id)];
   if (!node.alive) return;
   node.alive = false;
-  node.died_at = simulator_.now();
-  simulator_.cancel(node.depletion_event);
+  life_to_write(sim::index(id)).died_at = simulator_.now();
+  cancel_depletion(sim::index(id));
 }
 
 bool Radio::bring_up(NodeId id) {
   Node& node = nodes_[sim::index(id)];
   if (node.alive) return false;
-  if (node.battery_j > 0 && node.battery_j - consumed_j(id) <= 0) return false;
-  node.earlier_lives_s += sim::to_seconds(node.died_at - node.added_at);
-  node.added_at = simulator_.now();
-  node.died_at = sim::kTimeMax;
+  NodeLife& life = life_to_write(sim::index(id));  // written when it went down
+  if (life.battery_j > 0 && life.battery_j - consumed_j(id) <= 0) return false;
+  life.earlier_lives_s += sim::to_seconds(life.died_at - life.added_at);
+  life.added_at = simulator_.now();
+  life.died_at = sim::Time{};
   node.alive = true;
   schedule_depletion(id);
   return true;
@@ -202,7 +205,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   // Only a battery or a fault takes a node down: without either every node is up, and its cold
   // record is not fetched for a frame.
   if (guarded() && !nodes_[source_index].alive) {
-    ++nodes_[source_index].refused_count;
+    ++life_to_write(source_index).refused_count;
     mix_refusal(source);
     return false;
   }
@@ -214,7 +217,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   const double tx_j =
       tx_energy_j(params_.energy, bits, range * params_.meters_per_unit, crossover_m_);
   if (guarded() && !afford(source, tx_j)) {
-    ++nodes_[source_index].refused_count;
+    ++life_to_write(source_index).refused_count;
     mix_refusal(source);
     return false;
   }

@@ -2,7 +2,7 @@
 // The simulated radio as a *medium* (like ARGoS's range-and-bearing medium and ns-3's
 // YansWifiChannel): unit-disk reception with a per-transmission range, delay = latency + airtime +
 // jitter, Bernoulli loss per reception, per-node counters by message type, and the energy ledger of
-// It knows message formats, never protocol logic. See docs/radio-and-energy.md.
+// every node. It knows message formats, never protocol logic. See docs/radio-and-energy.md.
 #include <array>
 #include <atomic>
 #include <bit>
@@ -25,6 +25,7 @@
 #include "net/link_faults.hpp"
 #include "net/messages.hpp"
 #include "net/propagation.hpp"
+#include "net/radio_params.hpp"
 #include "net/spatial_grid.hpp"
 #include "net/tile_totals.hpp"
 #include "net/vec2.hpp"
@@ -34,40 +35,7 @@
 
 namespace masnet::net {
 
-/// `ideal`: no contention. `airtime`: a transmitter sends one frame at a time (its frames
-/// queue behind each other); receivers are never contended. `collision`: as airtime, and two
-/// receptions that overlap at a receiver are both lost (unless one is captured). `csma`: as
-/// collision, with IEEE 802.15.4 unslotted CSMA-CA, acknowledgements and retries.
-enum class RadioLevel { ideal, airtime, collision, csma };
-
 class ContendedMedium;
-
-struct RadioParams {
-  double max_range = 1.5;          ///< world units; every range is capped here
-  double meters_per_unit = 100.0;  ///< converts ranges to metres for the energy model
-  double latency_s = 50e-6;        ///< fixed per-frame delay (processing + propagation)
-  double bitrate_bps = 1e6;        ///< airtime = bytes·8 / bitrate
-  double jitter_s = 0.0;           ///< extra delay per reception, uniform in [0, jitter)
-  RadioLevel level = RadioLevel::airtime;
-  double loss = 0.0;  ///< probability that a reception is lost
-  /// Book the overhearing of bulk unicasts (row runs into the difference words) on a
-  /// second thread. Results are identical (integer sums, in any order, read only after it has
-  /// caught up); `masnet run` sets it when the process may run on two processors or more. Not a
-  /// scenario key.
-  bool overhearing_thread = false;
-  /// ... from this many static nodes on: below, the bookkeeping is light and stays inline (the
-  /// acoustic scenario's 1 600 sensors ran 3 % slower with the thread).
-  std::uint32_t overhearing_thread_min_nodes = 50000;
-  EnergyParams energy;
-  MessageSizes sizes;
-  PropagationParams propagation;  ///< `log_distance` needs level collision or csma
-  CsmaParams csma;
-  /// Capture (levels collision and csma, log_distance): an overlapped reception survives when
-  /// its SINR reaches this many dB. Off when not finite.
-  double capture_threshold_db = std::numeric_limits<double>::infinity();
-
-  bool contended() const { return level == RadioLevel::collision || level == RadioLevel::csma; }
-};
 
 /// Receives frames and battery news for all nodes of one radio (the world implements it).
 class RadioListener {
@@ -240,7 +208,7 @@ class Radio {
   static constexpr std::uint64_t kRefusedMark = std::uint64_t{0xA5} << 56;
   static constexpr std::uint64_t kUndeliveredMark = std::uint64_t{0x5A} << 56;
 
-  // Cold per-node state: what only batteries, loss, jitter, airtime queues and reports need.
+  // Cold per-node state: what only failures, batteries, loss and jitter draws and reports read.
   // What every transmission reads and writes of its sender lives apart in dense arrays by node
   // id (`senders_`, `hot_`, `positions_`): a burst of replies from neighbouring sensors walks
   // them in order, several senders to a cache line. The counters touched by every hearer of a
@@ -250,12 +218,16 @@ class Radio {
     bool alive = true;
     std::uint32_t interest = 0xFFFFFFFFu;
     std::uint64_t random_key = 0;
-    std::uint64_t lost_count = 0, unreachable_count = 0, refused_count = 0;
-    sim::Time added_at{};          // idle drain runs from here to min(now, died_at)
-    double earlier_lives_s = 0.0;  // time up before the last restart
-    double battery_j = 0.0;        // 0: unlimited
-    sim::Time died_at = sim::kTimeMax;
-    sim::EventId depletion_event;
+  };
+  // What only losses, failures, batteries and late nodes write: all zero for nearly every node of
+  // a large run, so kept in `lives_`, zeroed pages resident only where written.
+  struct NodeLife {
+    std::uint64_t lost_count, unreachable_count, refused_count;
+    sim::Time added_at;      // idle drain runs from here to min(now, died_at); zero: the start
+    double earlier_lives_s;  // time up before the last restart
+    double battery_j;        // 0: unlimited
+    sim::Time died_at;       // read only while the node is down (up: kTimeMax)
+    bool operator==(const NodeLife&) const = default;
   };
   struct Sender {
     double energy_tx_j = 0.0;
@@ -415,6 +387,14 @@ class Radio {
   const MobilePositions* mobile_ = nullptr;
 
   std::vector<Node> nodes_;
+  sim::ZeroedArray<NodeLife> lives_;            // [node]: grown to every node at the first write
+  std::vector<sim::EventId> depletion_events_;  // [node]: once a battery drains by idling
+  const NodeLife& life_of(std::size_t node) const;
+  NodeLife& life_to_write(std::size_t node);
+  sim::Time died_at(std::size_t node) const {
+    return nodes_[node].alive ? sim::kTimeMax : life_of(node).died_at;
+  }
+  void cancel_depletion(std::size_t node);
   std::vector<Sender> senders_;     // [node]
   std::vector<std::uint32_t> hot_;  // [node]: the hot index, kNoHotIndex until indexed
   std::vector<Vec2> positions_;     // [node]: static nodes' positions; NaN for mobile ones

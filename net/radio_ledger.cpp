@@ -178,18 +178,19 @@ NodeRadioStats Radio::stats(NodeId node) {
   if (index_dirty_) prepare_index();
   materialize();
   const Node& n = nodes_[sim::index(node)];
+  const NodeLife& life = life_of(sim::index(node));
   const std::uint32_t hot = hot_[sim::index(node)];
   NodeRadioStats s;
   s.heard_bytes = heard_bytes_[hot];
   s.overheard_count = overheard_count_[hot];
-  s.lost_count = n.lost_count;
-  s.unreachable_count = n.unreachable_count;
-  s.refused_count = n.refused_count;
+  s.lost_count = life.lost_count;
+  s.unreachable_count = life.unreachable_count;
+  s.refused_count = life.refused_count;
   s.energy_tx_j = senders_[sim::index(node)].energy_tx_j;
   s.energy_rx_j = rx_energy_j(params_.energy, 8.0 * static_cast<double>(s.heard_bytes));
   s.energy_idle_j = idle_j(node);
   s.alive = n.alive;
-  s.died_at = n.died_at;
+  s.died_at = died_at(sim::index(node));
   return s;
 }
 
@@ -212,10 +213,11 @@ sim::Fingerprint Radio::traffic_fingerprint() {
     }
     fp.mix(heard_bytes_[hot]);
     fp.mix(overheard_count_[hot]);
-    fp.mix(node.lost_count);
-    fp.mix((node.unreachable_count << 32) ^ node.refused_count);
+    const NodeLife& life = life_of(n);
+    fp.mix(life.lost_count);
+    fp.mix((life.unreachable_count << 32) ^ life.refused_count);
     fp.mix(senders_[n].energy_tx_j);
-    fp.mix(static_cast<std::uint64_t>(sim::to_ns(node.died_at)) ^ std::uint64_t{node.alive});
+    fp.mix(static_cast<std::uint64_t>(sim::to_ns(died_at(n))) ^ std::uint64_t{node.alive});
     for (std::size_t t = 0; t < type_count_; ++t) {
       const TxCounter sent = n < tx_stride ? tx_[t * tx_stride + n] : TxCounter{};
       const std::uint64_t rx_count = rx_count_[t * rx_stride + hot],

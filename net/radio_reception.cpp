@@ -185,10 +185,9 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
                         : given_loss >= 0.0 ? given_loss
                                             : link_loss(faults, center, id);
     if (loss > 0) {
-      Node& node = nodes_[sim::index(id)];
       if (sim::keyed_uniform01(seed_, kLossPurpose, nodes_[source_index].random_key,
-                               node.random_key, frame_number) < loss) {
-        ++node.lost_count;
+                               nodes_[sim::index(id)].random_key, frame_number) < loss) {
+        ++life_to_write(sim::index(id)).lost_count;
         ++lost;
         return;
       }
@@ -402,7 +401,7 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
       record_destination_loss_ =
           link_cut(faults, center, destination) ? -1.0 : link_loss(faults, center, destination);
     if (!reached)
-      ++nodes_[source_index].unreachable_count;
+      ++life_to_write(source_index).unreachable_count;
     else if (!tiled || owns(destination))
       receive_destination();
   }

@@ -43,9 +43,11 @@ Radio::~Radio() {
 
 void Radio::add_node(NodeId id, Node node, bool mobile, const Vec2& position) {
   MASNET_ASSERT(sim::index(id) == nodes_.size(), "node ids are dense from 0");
-  node.added_at = simulator_.now();
-  node.battery_j = params_.energy.battery_j;
   nodes_.push_back(node);
+  // A node's life record stays zero (unwritten) when it starts with the run and has no battery.
+  if (simulator_.now() != sim::Time{}) life_to_write(sim::index(id)).added_at = simulator_.now();
+  if (params_.energy.battery_j != 0.0)
+    life_to_write(sim::index(id)).battery_j = params_.energy.battery_j;
   senders_.emplace_back();
   hot_.push_back(kNoHotIndex);  // given by the next prepare_index()
   // A mobile node's entry is NaN: the one array answers both "where" and "static or not".
@@ -70,6 +72,27 @@ void Radio::add_mobile_node(NodeId id, std::uint64_t random_key) {
   Node node;
   node.random_key = random_key;
   add_node(id, node, true, Vec2{0, 0});
+}
+
+const Radio::NodeLife& Radio::life_of(std::size_t node) const {
+  static constexpr NodeLife kNoLife{};
+  return node < lives_.size() ? lives_[node] : kNoLife;
+}
+
+Radio::NodeLife& Radio::life_to_write(std::size_t node) {
+  if (node >= lives_.size()) {
+    // Rare: once the nodes are all added, then only for nodes added later. Records still zero
+    // are not copied, so their pages stay unwritten.
+    sim::ZeroedArray<NodeLife> grown(nodes_.size());
+    for (std::size_t n = 0; n < lives_.size(); ++n)
+      grown.fill_in(n, lives_[n]);
+    lives_ = std::move(grown);
+  }
+  return lives_[node];
+}
+
+void Radio::cancel_depletion(std::size_t node) {
+  if (node < depletion_events_.size()) simulator_.cancel(depletion_events_[node]);
 }
 
 const LineIndex& Radio::static_lines() {

@@ -78,6 +78,7 @@ Radio::TileLedger Radio::tile_ledger(std::uint32_t from, std::uint32_t to) {
   for (std::size_t i = 0; i < width; ++i) {
     const std::size_t k = from + i, n = sim::index(slots[k]);
     ledger.nodes.push_back(nodes_[n]);
+    ledger.lives.push_back(life_of(n));
     ledger.senders.push_back(senders_[n]);
     ledger.heard_bytes.push_back(heard_bytes_[k]);
     ledger.overheard_count.push_back(overheard_count_[k]);
@@ -94,8 +95,9 @@ void Radio::absorb_tile(const TileLedger& tile) {
   const std::size_t width = tile.end_slot - tile.first_slot;
   MASNET_ASSERT(tiled_ && tile.first_slot <= tile.end_slot &&
                     tile.end_slot <= static_slots().size() && tile.nodes.size() == width &&
-                    tile.senders.size() == width && tile.heard_bytes.size() == width &&
-                    tile.overheard_count.size() == width && tile.tx.size() == type_count_ * width &&
+                    tile.lives.size() == width && tile.senders.size() == width &&
+                    tile.heard_bytes.size() == width && tile.overheard_count.size() == width &&
+                    tile.tx.size() == type_count_ * width &&
                     tile.rx_count.size() == type_count_ * width &&
                     tile.rx_bytes.size() == type_count_ * width,
                 "a ledger of another tile of this run");
@@ -107,6 +109,7 @@ void Radio::absorb_tile(const TileLedger& tile) {
   for (std::size_t i = 0; i < width; ++i) {
     const std::size_t k = tile.first_slot + i, n = sim::index(slots[k]);
     nodes_[n] = tile.nodes[i];
+    if (tile.lives[i] != NodeLife{}) life_to_write(n) = tile.lives[i];
     senders_[n] = tile.senders[i];
     heard_bytes_.fill_in(k, tile.heard_bytes[i]);
     overheard_count_.fill_in(k, tile.overheard_count[i]);

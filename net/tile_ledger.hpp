@@ -14,6 +14,7 @@ struct Radio::TileLedger {
   std::uint32_t first_slot = 0, end_slot = 0;  // the tile's static slots
   TileTotals totals;
   std::vector<Node> nodes;                                  // [slot - first_slot]
+  std::vector<NodeLife> lives;                              // [slot - first_slot]
   std::vector<Sender> senders;                              // [slot - first_slot]
   std::vector<std::uint64_t> heard_bytes, overheard_count;  // [slot - first_slot]
   std::vector<TxCounter> tx;                                // [type][slot - first_slot]
@@ -27,6 +28,7 @@ struct Radio::TileLedger {
     visit(end_slot);
     visit(totals);
     visit(nodes);
+    visit(lives);
     visit(senders);
     visit(heard_bytes);
     visit(overheard_count);

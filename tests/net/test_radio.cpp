@@ -376,6 +376,32 @@ TEST_CASE("looking at idle energy does not change it", "[net]") {
   CHECK(idle_after(1) == idle_after(1000));
 }
 
+TEST_CASE("idle time counts from a late start and skips the time a node was down", "[net]") {
+  // The radio keeps when a node started and went down apart from its hot record, written only
+  // for the nodes they concern: node 1 starts at 2 s, node 0 is down from 1 s to 3 s.
+  sim::Simulator sim;
+  net::RadioParams params;
+  params.energy.idle_power_w = 0.25;
+  net::Radio radio(sim, params, 1);
+  radio.enable_failures();
+  radio.add_static_node(sim::node_id(0), Vec2{0, 0}, 0);
+  sim.at(sim::time_at(1.0), [&radio] { radio.take_down(sim::node_id(0)); });
+  sim.at(sim::time_at(2.0), [&radio] { radio.add_static_node(sim::node_id(1), Vec2{0.5, 0}, 1); });
+  sim.run_until(sim::time_at(2.5));
+  CHECK_FALSE(radio.stats(sim::node_id(0)).alive);
+  CHECK(radio.stats(sim::node_id(0)).died_at == sim::time_at(1.0));
+  CHECK(radio.stats(sim::node_id(0)).energy_idle_j == Approx(0.25 * 1.0));
+  CHECK(radio.stats(sim::node_id(1)).energy_idle_j == Approx(0.25 * 0.5));
+  sim.at(sim::time_at(3.0), [&radio] { CHECK(radio.bring_up(sim::node_id(0))); });
+  sim.run_until(sim::time_at(5.0));
+  const net::NodeRadioStats restarted = radio.stats(sim::node_id(0));
+  CHECK(restarted.alive);
+  CHECK(restarted.died_at == sim::kTimeMax);
+  CHECK(restarted.energy_idle_j == Approx(0.25 * (1.0 + 2.0)));
+  CHECK(radio.stats(sim::node_id(1)).energy_idle_j == Approx(0.25 * 3.0));
+  CHECK(radio.stats(sim::node_id(1)).died_at == sim::kTimeMax);
+}
+
 TEST_CASE("frames booked in bulk on a sensor grid give every node exactly the brute-force counts",
           "[net]") {
   // A 30 × 30 grid (indexed as lines and booked run by run) plus moving robots; random

@@ -113,7 +113,9 @@ TEST_CASE("tile bytes: a tile's end reads back as written", "[scenarios][tiles]"
   end.ledger.totals.heard_by_type[3] = 4;
   end.ledger.totals.counters[1].rx_bytes = 99;
   end.ledger.nodes.resize(2);
-  end.ledger.nodes[1].lost_count = 6;
+  end.ledger.nodes[1].random_key = 6;
+  end.ledger.lives.resize(2);
+  end.ledger.lives[0].lost_count = 7;
   end.ledger.senders.resize(2);
   end.ledger.senders[0].energy_tx_j = 0.75;
   end.ledger.heard_bytes = {1, 2};
@@ -143,7 +145,10 @@ TEST_CASE("tile bytes: a tile's end reads back as written", "[scenarios][tiles]"
   CHECK(back.ledger.totals.heard_by_type[3] == 4);
   CHECK(back.ledger.totals.counters[1].rx_bytes == 99);
   REQUIRE(back.ledger.nodes.size() == 2);
-  CHECK(back.ledger.nodes[1].lost_count == 6);
+  CHECK(back.ledger.nodes[1].random_key == 6);
+  REQUIRE(back.ledger.lives.size() == 2);
+  CHECK(back.ledger.lives[0].lost_count == 7);
+  CHECK(back.ledger.lives[1].lost_count == 0);
   CHECK(back.ledger.senders[0].energy_tx_j == 0.75);
   CHECK(back.ledger.heard_bytes == sent.heard_bytes);
   CHECK(back.ledger.overheard_count == sent.overheard_count);
