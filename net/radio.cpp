@@ -271,12 +271,30 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   src.traffic.mix((std::uint64_t{sim::index(source)} << 32) | sim::index(destination));
   src.traffic.mix((std::uint64_t{static_cast<std::uint8_t>(type)} << 32) | bytes);
   if (shipped) [[unlikely]] {
-    // The other tiles' nodes get it from the record, with the key its delivery takes here.
+    // The other tiles' nodes get it from the record, with the key its delivery takes here
+    // (taken whether or not anyone needs it: the sender's count is the run in one piece's).
     const sim::EventKey key = simulator_.next_key(arrival);
-    outbox_.push_back(FrameRecord{
-        now, arrival, key, source, destination, range, destination_distance, frame_number,
-        static_cast<std::uint32_t>(type_index), bytes, heard.destination_reached, record_mobiles_,
-        payload, link_history_.epoch(), record_losses_, record_destination_loss_});
+    if (needed_by_other_tiles(source, destination, range, heard.destination_reached)) {
+      // Field by field: the sink's one record keeps its buffers' capacity.
+      FrameRecord& record = outbox_sink_ ? outgoing_ : outbox_.emplace_back();
+      record.sent_at = now;
+      record.arrival = arrival;
+      record.key = key;
+      record.source = source;
+      record.destination = destination;
+      record.range = range;
+      record.destination_distance = destination_distance;
+      record.frame_number = frame_number;
+      record.type_index = static_cast<std::uint32_t>(type_index);
+      record.bytes = bytes;
+      record.destination_reached = heard.destination_reached;
+      record.mobile_hearers = record_mobiles_;
+      record.payload = payload;
+      record.link_epoch = link_history_.epoch();
+      record.mobile_losses = record_losses_;
+      record.destination_loss = record_destination_loss_;
+      if (outbox_sink_) outbox_sink_(record);
+    }
     if (!scratch_receivers_.empty()) deliver(arrival, out, now, std::move(payload), &key);
     return true;
   }

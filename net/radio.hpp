@@ -8,6 +8,7 @@
 #include <bit>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <span>
@@ -16,6 +17,8 @@
 #include <vector>
 #if defined(__SSE2__)
 #include <emmintrin.h>  // baseline x86-64
+
+#include <Eigen/Geometry>
 #endif
 
 #include "net/csma.hpp"
@@ -185,6 +188,11 @@ class Radio {
   const std::vector<NodeId>& static_slots();
   bool owns(NodeId node) const;
   std::vector<FrameRecord>& outbox() { return outbox_; }
+  /// Instead of the outbox: each frame for the other tiles handed to `sink` as it is sent, in one
+  /// record whose buffers are reused (over ranks the frames become bytes at once).
+  void set_outbox_sink(std::function<void(const FrameRecord&)> sink) {
+    outbox_sink_ = std::move(sink);
+  }
   /// Another tile's frame: books and delivers it to this tile's nodes. Precondition: its
   /// arrival is not before now.
   void inject(const FrameRecord& record);
@@ -520,7 +528,13 @@ class Radio {
   }
   double band_y_min_ = 0.0, band_y_max_ = 0.0;  // its static nodes' extent in y
   bool reaches_band(const Vec2& center, double range) const;
+  // The extents of the other tiles' static nodes (the slots before its own, and after): a frame
+  // that reaches neither and no mobile node is no other tile's business.
+  std::array<Eigen::AlignedBox2d, 2> others_extents_;
+  bool needed_by_other_tiles(NodeId source, NodeId destination, double range, bool reached) const;
   std::vector<FrameRecord> outbox_;
+  std::function<void(const FrameRecord&)> outbox_sink_;
+  FrameRecord outgoing_;  // the record handed to the sink
   std::vector<NodeId> record_mobiles_;
   std::vector<double> record_losses_;  // with link faults: each recorded hearer's loss then
   double record_destination_loss_ = 0.0;

@@ -33,6 +33,11 @@ void Radio::own_static_slots(std::uint32_t first, std::uint32_t end) {
     band_y_min_ = std::min(band_y_min_, y);
     band_y_max_ = std::max(band_y_max_, y);
   }
+  for (Eigen::AlignedBox2d& extent : others_extents_)
+    extent.setEmpty();
+  for (std::uint32_t k = 0; k < slots; ++k)
+    if (k < first || k >= end)
+      others_extents_[k < first ? 0 : 1].extend(positions_[sim::index(static_slots()[k])]);
   // Every tile would start its own: the tiles are the run's parallelism.
   params_.overhearing_thread = false;
 }
@@ -40,6 +45,20 @@ void Radio::own_static_slots(std::uint32_t first, std::uint32_t end) {
 bool Radio::owns(NodeId node) const {
   const std::uint32_t hot = hot_[sim::index(node)];
   return hot >= static_ids_.size() || owned_slot(hot);
+}
+
+bool Radio::needed_by_other_tiles(NodeId source, NodeId destination, double range,
+                                  bool reached) const {
+  // Another tile delivers a frame to its copies of the mobile hearers and the addressee, and to
+  // its own static nodes within range.
+  if (!record_mobiles_.empty()) return true;
+  if (destination != sim::kNoNode && reached && hot_[sim::index(destination)] >= static_ids_.size())
+    return true;
+  const Vec2& center = positions_[sim::index(source)];
+  const double reach = range + 1e-9 * (center.cwiseAbs().maxCoeff() + range + 1.0);  // rounding
+  return std::any_of(others_extents_.begin(), others_extents_.end(), [&](const auto& extent) {
+    return !extent.isEmpty() && extent.squaredExteriorDistance(center) <= reach * reach;
+  });
 }
 
 void Radio::inject(const FrameRecord& record) {

@@ -87,10 +87,16 @@ RunTiles::RunTiles(sim::Simulator& simulator, agents::World& world, const agents
     }
   }
   published_.resize(tiles_);
-  if (link_) rank_outbox_.resize(tiles_);
+  if (link_) {
+    rank_outbox_.resize(tiles_);
+    frame_writer_.emplace(frame_bytes_);
+    world.radio().set_outbox_sink([this](const net::FrameRecord& f) { frame_writer_->add(f); });
+  }
 }
 
-RunTiles::~RunTiles() = default;
+RunTiles::~RunTiles() {
+  if (link_) worlds_[0]->radio().set_outbox_sink({});
+}
 
 void RunTiles::start() {
   for (std::size_t part = 1; part < worlds_.size(); ++part)
@@ -123,47 +129,53 @@ void RunTiles::exchange() {
   }
   if (link_) {
     // This rank's frames to every other rank, written once and copied for the rest; theirs in.
+    // Its radio wrote them as it sent them (a burst's records would be a hundred megabytes).
     const std::size_t first_other = first_tile_ == 0 ? 1 : 0;
+    frame_writer_->finish();
+    sim::shrink_if_oversized(frame_bytes_);
     std::vector<std::byte>& bytes = rank_outbox_[first_other];
-    bytes.clear();
-    append_frames(bytes, published_[first_tile_]);
-    sim::shrink_if_oversized(bytes);
-    // Over ranks this tile's own records are read by no one once written (a burst's are about a
-    // hundred megabytes), nor are the bytes once sent.
-    published_[first_tile_].clear();
-    sim::shrink_if_oversized(published_[first_tile_], kBurstBytes);
+    std::swap(bytes, frame_bytes_);
     for (std::size_t r = 0; r < tiles_; ++r) {
       if (r == first_tile_)
         rank_outbox_[r].clear();
       else if (r != first_other)
         rank_outbox_[r].assign(bytes.begin(), bytes.end());
     }
-    const std::vector<std::vector<std::byte>>& inbox = link_->exchange(rank_outbox_);
+    // The other ranks' frames stay bytes, read one at a time as they are taken in.
+    rank_inbox_ = &link_->exchange(rank_outbox_);
+    std::swap(bytes, frame_bytes_);  // no one reads the bytes once sent
+    frame_bytes_.clear();
+    sim::shrink_if_oversized(frame_bytes_, kBurstBytes);
+    frame_writer_.emplace(frame_bytes_);
     for (std::vector<std::byte>& sent : rank_outbox_) {
       sent.clear();
       sim::shrink_if_oversized(sent, kBurstBytes);
     }
-    for (std::size_t r = 0; r < tiles_; ++r)
-      if (r != first_tile_) {
-        published_[r].clear();
-        read_frames(inbox[r], published_[r]);
-        sim::shrink_if_oversized(published_[r]);
-      }
   }
   published_earliest_ = sim::kTimeMax;
   for (const std::vector<net::FrameRecord>& frames : published_)
     for (const net::FrameRecord& record : frames)
       published_earliest_ = std::min(published_earliest_, record.arrival);
+  if (rank_inbox_ != nullptr)
+    for (std::size_t r = 0; r < tiles_; ++r)
+      if (r != first_tile_)
+        published_earliest_ =
+            std::min(published_earliest_, FrameReader((*rank_inbox_)[r]).earliest_arrival());
 }
 
 void RunTiles::take_in(std::size_t part) {
   // In tile order, each tile's frames in its send order: the same on any number of threads.
   const std::size_t tile = first_tile_ + part;
   net::Radio& radio = worlds_[part]->radio();
-  for (std::size_t from = 0; from < published_.size(); ++from)
-    if (from != tile)
-      for (const net::FrameRecord& record : published_[from])
-        radio.inject(record);
+  for (std::size_t from = 0; from < published_.size(); ++from) {
+    if (from == tile) continue;
+    for (const net::FrameRecord& record : published_[from])
+      radio.inject(record);
+    if (rank_inbox_ != nullptr)
+      for (FrameReader frames((*rank_inbox_)[from]); frames.next(received_);)
+        radio.inject(received_);
+  }
+  rank_inbox_ = nullptr;  // over ranks this process runs one tile: its frames are taken in
 }
 
 void RunTiles::take_in_all() {

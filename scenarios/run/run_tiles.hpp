@@ -10,12 +10,14 @@
 #include <cstdint>
 #include <future>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "agents/world.hpp"
 #include "scenarios/loader/scenario.hpp"
+#include "scenarios/run/tile_bytes.hpp"
 #include "sim/fingerprint.hpp"
 #include "sim/windowed_run.hpp"
 
@@ -96,8 +98,14 @@ class RunTiles {
   std::unique_ptr<sim::WindowedRun> windowed_;
   // Each tile's frames of the last window, read by every other tile at the start of the next
   // (each on its own thread) while it sends new ones into its radio's outbox.
-  std::vector<std::vector<net::FrameRecord>> published_;       // [tile]
-  std::vector<std::vector<std::byte>> rank_outbox_;            // [rank], over ranks
+  std::vector<std::vector<net::FrameRecord>> published_;  // [tile]
+  std::vector<std::vector<std::byte>> rank_outbox_;       // [rank], over ranks
+  // Over ranks: this tile's frames of this window, written as its radio sends them, and the
+  // other ranks' of the last window, as received, until taken in.
+  std::vector<std::byte> frame_bytes_;
+  std::optional<FrameWriter> frame_writer_;
+  const std::vector<std::vector<std::byte>>* rank_inbox_ = nullptr;
+  net::FrameRecord received_;  // the one being taken in (its buffers reused)
   static constexpr std::uint64_t kEndSlotsPerRound = 1 << 14;  // a ledger sent in pieces
   static constexpr std::size_t kBurstBytes = 16 << 20;         // a rank's buffers kept up to this
   std::uint64_t other_ranks_events_ = 0;

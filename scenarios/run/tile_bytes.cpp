@@ -1,5 +1,7 @@
 #include "scenarios/run/tile_bytes.hpp"
 
+#include <algorithm>
+#include <cstring>
 #include <stdexcept>
 #include <type_traits>
 #include <variant>
@@ -22,6 +24,12 @@ struct FrameHead {
   bool destination_reached = false;
   std::uint32_t link_epoch = 0, losses = 0;  // losses: 0, or one per mobile hearer
   double destination_loss = 0.0;
+};
+
+// The frames' head: their count and earliest arrival, written when the writer finishes.
+struct FramesHead {
+  std::uint64_t count = 0;
+  sim::Time earliest_arrival = sim::kTimeMax;
 };
 
 // Every field of each built-in message, in one order, for writing and reading alike. A message
@@ -124,70 +132,99 @@ void append_value(std::vector<std::byte>& bytes, const Value& value) {
 
 }  // namespace
 
+FrameWriter::FrameWriter(std::vector<std::byte>& bytes) : bytes_(&bytes), head_at_(bytes.size()) {
+  append_value(bytes, FramesHead{});
+}
+
+void FrameWriter::add(const net::FrameRecord& f) {
+  const auto index = static_cast<std::uint32_t>(f.payload.index());
+  if (index >= net::kBuiltinMessageTypeCount)
+    throw std::runtime_error(
+        "a protocol's own message types cannot cross MPI ranks: run without ranks");
+  ++count_;
+  earliest_arrival_ = std::min(earliest_arrival_, f.arrival);
+  std::vector<std::byte>& bytes = *bytes_;
+  const FrameHead head{f.sent_at,
+                       f.arrival,
+                       f.key,
+                       f.source,
+                       f.destination,
+                       f.range,
+                       f.destination_distance,
+                       f.frame_number,
+                       f.type_index,
+                       f.bytes,
+                       static_cast<std::uint32_t>(f.mobile_hearers.size()),
+                       index,
+                       f.destination_reached,
+                       f.link_epoch,
+                       static_cast<std::uint32_t>(f.mobile_losses.size()),
+                       f.destination_loss};
+  append_value(bytes, head);
+  sim::append_records(bytes, f.mobile_hearers.data(), f.mobile_hearers.size());
+  sim::append_records(bytes, f.mobile_losses.data(), f.mobile_losses.size());
+  std::visit(
+      [&](const auto& message) {
+        if constexpr (!std::is_same_v<std::decay_t<decltype(message)>, net::CustomMessage>) {
+          auto copy = message;
+          Writer writer{bytes};
+          fields(writer, copy);
+        }
+      },
+      f.payload);
+}
+
+void FrameWriter::finish() {
+  const FramesHead head{count_, earliest_arrival_};
+  std::memcpy(bytes_->data() + head_at_, &head, sizeof head);
+}
+
 void append_frames(std::vector<std::byte>& bytes, const std::vector<net::FrameRecord>& frames) {
-  append_value(bytes, static_cast<std::uint64_t>(frames.size()));
-  for (const net::FrameRecord& f : frames) {
-    const auto index = static_cast<std::uint32_t>(f.payload.index());
-    if (index >= net::kBuiltinMessageTypeCount)
-      throw std::runtime_error(
-          "a protocol's own message types cannot cross MPI ranks: run without ranks");
-    const FrameHead head{f.sent_at,
-                         f.arrival,
-                         f.key,
-                         f.source,
-                         f.destination,
-                         f.range,
-                         f.destination_distance,
-                         f.frame_number,
-                         f.type_index,
-                         f.bytes,
-                         static_cast<std::uint32_t>(f.mobile_hearers.size()),
-                         index,
-                         f.destination_reached,
-                         f.link_epoch,
-                         static_cast<std::uint32_t>(f.mobile_losses.size()),
-                         f.destination_loss};
-    append_value(bytes, head);
-    sim::append_records(bytes, f.mobile_hearers.data(), f.mobile_hearers.size());
-    sim::append_records(bytes, f.mobile_losses.data(), f.mobile_losses.size());
-    std::visit(
-        [&](const auto& message) {
-          if constexpr (!std::is_same_v<std::decay_t<decltype(message)>, net::CustomMessage>) {
-            auto copy = message;
-            Writer writer{bytes};
-            fields(writer, copy);
-          }
-        },
-        f.payload);
+  FrameWriter writer(bytes);
+  for (const net::FrameRecord& f : frames)
+    writer.add(f);
+  writer.finish();
+}
+
+FrameReader::FrameReader(std::span<const std::byte> bytes) : in_(bytes) {
+  const auto head = in_.read<FramesHead>();
+  count_ = head.count;
+  earliest_arrival_ = head.earliest_arrival;
+}
+
+bool FrameReader::next(net::FrameRecord& f) {
+  if (read_ == count_) {
+    if (!in_.done()) throw std::runtime_error("tile frames: bytes left over");
+    return false;
   }
+  ++read_;
+  const auto head = in_.read<FrameHead>();
+  f.sent_at = head.sent_at;
+  f.arrival = head.arrival;
+  f.key = head.key;
+  f.source = head.source;
+  f.destination = head.destination;
+  f.range = head.range;
+  f.destination_distance = head.destination_distance;
+  f.frame_number = head.frame_number;
+  f.type_index = head.type_index;
+  f.bytes = head.bytes;
+  f.destination_reached = head.destination_reached;
+  f.link_epoch = head.link_epoch;
+  f.destination_loss = head.destination_loss;
+  f.mobile_hearers.resize(head.hearers);
+  in_.read(f.mobile_hearers.data(), f.mobile_hearers.size());
+  f.mobile_losses.resize(head.losses);
+  in_.read(f.mobile_losses.data(), f.mobile_losses.size());
+  f.payload = read_payload(in_, head.payload_index, Builtin{});
+  return true;
 }
 
 void read_frames(std::span<const std::byte> bytes, std::vector<net::FrameRecord>& frames) {
-  sim::PlainReader in(bytes);
-  const auto count = in.read<std::uint64_t>();
-  for (std::uint64_t k = 0; k < count; ++k) {
-    const auto head = in.read<FrameHead>();
-    net::FrameRecord& f = frames.emplace_back();
-    f.sent_at = head.sent_at;
-    f.arrival = head.arrival;
-    f.key = head.key;
-    f.source = head.source;
-    f.destination = head.destination;
-    f.range = head.range;
-    f.destination_distance = head.destination_distance;
-    f.frame_number = head.frame_number;
-    f.type_index = head.type_index;
-    f.bytes = head.bytes;
-    f.destination_reached = head.destination_reached;
-    f.link_epoch = head.link_epoch;
-    f.destination_loss = head.destination_loss;
-    f.mobile_hearers.resize(head.hearers);
-    in.read(f.mobile_hearers.data(), f.mobile_hearers.size());
-    f.mobile_losses.resize(head.losses);
-    in.read(f.mobile_losses.data(), f.mobile_losses.size());
-    f.payload = read_payload(in, head.payload_index, Builtin{});
-  }
-  if (!in.done()) throw std::runtime_error("tile frames: bytes left over");
+  FrameReader reader(bytes);
+  net::FrameRecord record;
+  while (reader.next(record))
+    frames.push_back(record);
 }
 
 std::vector<std::byte> tile_end_bytes(TileEnd& end) {

@@ -11,12 +11,48 @@
 #include "net/frame_record.hpp"
 #include "net/tile_ledger.hpp"
 #include "sim/fingerprint.hpp"
+#include "sim/plain_bytes.hpp"
+#include "sim/time.hpp"
 
 namespace masnet::scenarios {
 
-/// Appends `frames`. Throws std::runtime_error for a frame of a message type a protocol
-/// registered (its body is shared memory, which cannot cross ranks).
+/// Appends frames to `bytes` one at a time, their count and earliest arrival first (written by
+/// finish()): a tile's frames become bytes as they are sent, never held as records. add()
+/// throws std::runtime_error for a frame of a message type a protocol registered (its body is
+/// shared memory, which cannot cross ranks).
+class FrameWriter {
+ public:
+  explicit FrameWriter(std::vector<std::byte>& bytes);
+  void add(const net::FrameRecord& frame);
+  void finish();
+
+ private:
+  std::vector<std::byte>* bytes_;
+  std::size_t head_at_;
+  std::uint64_t count_ = 0;
+  sim::Time earliest_arrival_ = sim::kTimeMax;
+};
+/// Appends `frames` with a FrameWriter.
 void append_frames(std::vector<std::byte>& bytes, const std::vector<net::FrameRecord>& frames);
+
+/// The frames of bytes written by append_frames, one at a time into one record whose buffers are
+/// reused: a window's frames from another rank (half a million in a burst of the 10⁶ benchmark)
+/// are injected as they are read, never held as records all at once. Throws std::runtime_error
+/// on bytes cut short or left over.
+class FrameReader {
+ public:
+  explicit FrameReader(std::span<const std::byte> bytes);
+  std::uint64_t count() const { return count_; }
+  sim::Time earliest_arrival() const { return earliest_arrival_; }  ///< kTimeMax: none
+  /// Reads the next frame into `record`; false once every frame has been read.
+  bool next(net::FrameRecord& record);
+
+ private:
+  sim::PlainReader in_;
+  std::uint64_t count_ = 0, read_ = 0;
+  sim::Time earliest_arrival_ = sim::kTimeMax;
+};
+
 /// Appends the frames `bytes` holds to `frames`.
 void read_frames(std::span<const std::byte> bytes, std::vector<net::FrameRecord>& frames);
 

@@ -250,3 +250,49 @@ TEST_CASE("radio tiles: with airtime queues and losses too", "[net][tiles]") {
   params.loss = 0.2;
   check_tiles_equal_whole(params);
 }
+
+TEST_CASE("radio tiles: a frame is shipped only when another tile has a node it can reach",
+          "[net][tiles]") {
+  // Tile 1 of 3 owns rows 8 to 15 (y from 2.0 to 3.75). A sensor's frame goes into its outbox
+  // when its disk reaches a row of another tile, any mobile node, or a mobile addressee.
+  net::RadioParams params;
+  params.level = net::RadioLevel::ideal;
+  Network tile(params);
+  net::Radio& radio = *tile.radio;
+  const auto slots = static_cast<std::uint32_t>(radio.static_slots().size());
+  radio.own_static_slots(slots / 3, slots * 2 / 3);
+  auto sensor = [](std::uint32_t column, std::uint32_t row) {
+    return sim::node_id(row * kSide + column);
+  };
+  auto shipped_after = [&](auto send) {
+    radio.outbox().clear();
+    send();
+    return radio.outbox().size();
+  };
+  const double range = 0.3;  // the rows next to the sender's, not the ones after
+  for (const std::uint32_t row : {8u, 12u, 15u})
+    for (std::uint32_t r = 0; r < kRobots; ++r)  // no robot hears these frames
+      REQUIRE(
+          (tile.circles.position(sim::node_id(kSensors + r)) - Vec2{kSpacing * 22, kSpacing * row})
+              .norm() > range);
+  const net::Report report{sim::node_id(0), 1.0, Vec2{0, 0}};
+  CHECK(shipped_after([&] { radio.broadcast(sensor(22, 12), range, report); }) == 0);
+  CHECK(shipped_after([&] { radio.broadcast(sensor(22, 8), range, report); }) == 1);   // row 7
+  CHECK(shipped_after([&] { radio.broadcast(sensor(22, 15), range, report); }) == 1);  // row 16
+  const net::Neighbor hello{sim::node_id(0), Vec2{0, 0}};
+  CHECK(shipped_after([&] { radio.unicast(sensor(22, 12), sensor(22, 13), hello); }) == 0);
+  CHECK(shipped_after([&] { radio.unicast(sensor(22, 15), sensor(22, 16), hello); }) == 1);
+  // A robot's copy lives in every tile: a frame to it, or one it hears, is every tile's.
+  const NodeId robot = sim::node_id(kSensors);
+  const Vec2 robot_at = tile.circles.position(robot);
+  // The sensor 0.9 from the robot: its disk holds rows 9 to 15 and no other robot.
+  REQUIRE((radio.position(sensor(4, 12)) - robot_at).norm() < 0.91);
+  CHECK(shipped_after([&] { radio.unicast(sensor(4, 12), robot, hello); }) == 1);
+  std::uint32_t beside = 0;  // the sensor of this tile closest to the robot
+  for (std::uint32_t k = slots / 3; k < slots * 2 / 3; ++k)
+    if ((radio.position(sim::node_id(k)) - robot_at).norm() <
+        (radio.position(sim::node_id(beside)) - robot_at).norm())
+      beside = k;
+  REQUIRE((radio.position(sim::node_id(beside)) - robot_at).norm() < range);
+  CHECK(shipped_after([&] { radio.broadcast(sim::node_id(beside), range, report); }) == 1);
+}
