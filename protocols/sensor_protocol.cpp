@@ -36,10 +36,11 @@ void PaperSensorProtocol::on_frame(SensorHost& host, const net::Frame& frame) {
     SensorState& state = states_[host.index()];
     // 2: each sensor finds its closest robot (ties: the lower id).
     const double d2 = (position->position - host.position()).squaredNorm();
-    if (d2 < state.closest_distance2 ||
-        (d2 == state.closest_distance2 && position->robot < state.closest_robot)) {
+    const NodeId closest = state.closest_robot();
+    if (closest == sim::kNoNode || d2 < state.closest_distance2 ||
+        (d2 == state.closest_distance2 && position->robot < closest)) {
       state.closest_distance2 = d2;
-      state.closest_robot = position->robot;
+      state.closest_robot_plus_one = sim::index(position->robot) + 1;
     }
     if (!state.report_scheduled) {
       state.report_scheduled = true;
@@ -62,11 +63,12 @@ void PaperSensorProtocol::on_timer(SensorHost& host, std::uint32_t kind) {
   }
   const SensorState& state = states_[host.index()];
   // 3: each sensor sends its position and measurement to its closest robot.
-  if (kind == kReport && state.closest_robot != sim::kNoNode) {
+  const NodeId closest = state.closest_robot();
+  if (kind == kReport && closest != sim::kNoNode) {
     const double reading = host.reading();
     MASNET_LOG(log_, trace, "sensor {}: reports {} to its closest robot {}", sim::index(host.id()),
-               reading, sim::index(state.closest_robot));
-    host.unicast(state.closest_robot, net::Report{host.id(), reading, host.position()});
+               reading, sim::index(closest));
+    host.unicast(closest, net::Report{host.id(), reading, host.position()});
   }
 }
 

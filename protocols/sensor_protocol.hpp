@@ -5,7 +5,6 @@
 // in an array (10⁶ sensors must stay cheap), and the prepared cell of the SENSE being answered
 // is a cache.
 #include <cstdint>
-#include <limits>
 #include <vector>
 
 #include "protocols/geometry.hpp"
@@ -13,13 +12,19 @@
 #include "protocols/protocol.hpp"
 #include "sim/log.hpp"
 #include "sim/time.hpp"
+#include "sim/zeroed_array.hpp"
 
 namespace masnet::protocols {
 
+// All zero bytes: a sensor that has heard no robot yet. The states live in zeroed pages, so a
+// tile (or rank) of a run cut by space never makes the other tiles' sensors' states resident.
 struct SensorState {
-  NodeId closest_robot = sim::kNoNode;
-  double closest_distance2 = std::numeric_limits<double>::infinity();
+  double closest_distance2 = 0.0;            // once a robot is heard
+  std::uint32_t closest_robot_plus_one = 0;  // 0: none heard yet
   bool report_scheduled = false;
+  NodeId closest_robot() const {
+    return closest_robot_plus_one == 0 ? sim::kNoNode : sim::node_id(closest_robot_plus_one - 1);
+  }
 };
 
 class PaperSensorProtocol final : public SensorProtocol {
@@ -56,7 +61,7 @@ class PaperSensorProtocol final : public SensorProtocol {
   double reply_jitter_s_;
   std::uint64_t seed_;
   const sim::Log* log_;
-  std::vector<SensorState> states_;
+  sim::ZeroedArray<SensorState> states_;
   // Jittered READINGs not sent yet, per sensor, oldest first (only with a jitter).
   std::vector<std::vector<PendingReply>> pending_;
   // A SENSE reaches its hearers one after another: its cell is prepared once for all of them
