@@ -17,9 +17,9 @@
 #include <vector>
 #if defined(__SSE2__)
 #include <emmintrin.h>  // baseline x86-64
+#endif
 
 #include <Eigen/Geometry>
-#endif
 
 #include "net/csma.hpp"
 #include "net/energy.hpp"

@@ -35,7 +35,7 @@ class FrameWriter {
 /// Appends `frames` with a FrameWriter.
 void append_frames(std::vector<std::byte>& bytes, const std::vector<net::FrameRecord>& frames);
 
-/// The frames of bytes written by append_frames, one at a time into one record whose buffers are
+/// The frames of bytes a FrameWriter wrote, one at a time into one record whose buffers are
 /// reused: a window's frames from another rank (half a million in a burst of the 10⁶ benchmark)
 /// are injected as they are read, never held as records all at once. Throws std::runtime_error
 /// on bytes cut short or left over.

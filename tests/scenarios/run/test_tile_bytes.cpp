@@ -3,6 +3,7 @@
 // a protocol's own message type and short bytes are refused with the reason.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstring>
 #include <memory>
 #include <stdexcept>
@@ -52,6 +53,7 @@ TEST_CASE("tile bytes: frames of every built-in message type read back as writte
       frame(4, net::Neighbor{a, Vec2(7, 8)}),
       frame(5, net::Sense{b, 42, {Vec2(0, 0), Vec2(1, 0), Vec2(0.5, 0.75)}}),
       frame(6, net::Reading{a, 43, 1e-300, Vec2(9, 10)})};
+  frames[3].arrival = sim::time_at(0.1);  // the earliest, not the first
   std::vector<std::byte> bytes;
   append_frames(bytes, frames);
   std::vector<net::FrameRecord> back;
@@ -86,6 +88,18 @@ TEST_CASE("tile bytes: frames of every built-in message type read back as writte
   CHECK(reading.update == 43);
   CHECK(reading.reading == 1e-300);
   CHECK(reading.position == Vec2(9, 10));
+
+  // The head names the count and the earliest arrival; none written reads as kTimeMax.
+  const FrameReader reader(bytes);
+  CHECK(reader.count() == frames.size());
+  sim::Time earliest = sim::kTimeMax;
+  for (const net::FrameRecord& f : frames)
+    earliest = std::min(earliest, f.arrival);
+  CHECK(reader.earliest_arrival() == earliest);
+  std::vector<std::byte> empty;
+  append_frames(empty, {});
+  CHECK(FrameReader(empty).count() == 0);
+  CHECK(FrameReader(empty).earliest_arrival() == sim::kTimeMax);
 
   // Cut short: refused, not read past the end.
   bytes.pop_back();
