@@ -220,13 +220,6 @@ bool FrameReader::next(net::FrameRecord& f) {
   return true;
 }
 
-void read_frames(std::span<const std::byte> bytes, std::vector<net::FrameRecord>& frames) {
-  FrameReader reader(bytes);
-  net::FrameRecord record;
-  while (reader.next(record))
-    frames.push_back(record);
-}
-
 std::vector<std::byte> tile_end_bytes(TileEnd& end) {
   // A ledger is hundreds of megabytes on large runs: the bytes are sized once (no copies as
   // they grow) and each part of the ledger is freed as soon as it is written, so the ledger and

@@ -53,9 +53,6 @@ class FrameReader {
   sim::Time earliest_arrival_ = sim::kTimeMax;
 };
 
-/// Appends the frames `bytes` holds to `frames`.
-void read_frames(std::span<const std::byte> bytes, std::vector<net::FrameRecord>& frames);
-
 /// A tile at the end of the run: its sensors' counts, its radio's ledger, the fingerprint
 /// streams of the origins it alone holds (its sensors), and the kernel events it ran.
 struct TileEnd {

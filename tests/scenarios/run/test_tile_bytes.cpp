@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstring>
 #include <memory>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
@@ -16,6 +17,14 @@ using namespace masnet::scenarios;
 using net::Vec2;
 
 namespace {
+
+std::vector<net::FrameRecord> read_all(std::span<const std::byte> bytes) {
+  std::vector<net::FrameRecord> frames;
+  net::FrameRecord record;
+  for (FrameReader reader(bytes); reader.next(record);)
+    frames.push_back(record);
+  return frames;
+}
 
 net::FrameRecord frame(std::uint64_t number, net::Payload payload) {
   net::FrameRecord f;
@@ -56,8 +65,7 @@ TEST_CASE("tile bytes: frames of every built-in message type read back as writte
   frames[3].arrival = sim::time_at(0.1);  // the earliest, not the first
   std::vector<std::byte> bytes;
   append_frames(bytes, frames);
-  std::vector<net::FrameRecord> back;
-  read_frames(bytes, back);
+  const std::vector<net::FrameRecord> back = read_all(bytes);
   REQUIRE(back.size() == frames.size());
   for (std::size_t k = 0; k < frames.size(); ++k) {
     INFO("frame " << k);
@@ -103,8 +111,7 @@ TEST_CASE("tile bytes: frames of every built-in message type read back as writte
 
   // Cut short: refused, not read past the end.
   bytes.pop_back();
-  std::vector<net::FrameRecord> cut;
-  CHECK_THROWS_WITH(read_frames(bytes, cut), "plain records: fewer bytes than records");
+  CHECK_THROWS_WITH(read_all(bytes), "plain records: fewer bytes than records");
 }
 
 TEST_CASE("tile bytes: a protocol's own message type cannot cross ranks", "[scenarios][tiles]") {
