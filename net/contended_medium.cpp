@@ -57,6 +57,7 @@ bool ContendedMedium::send(NodeId source, NodeId destination, double range, Payl
   const auto type_index = static_cast<std::size_t>(type);
   const std::uint32_t bytes = size_bytes(payload, radio_.params_.sizes);
   Radio::TxCounter& sent = radio_.tx_[type_index * radio_.nodes_.size() + source_index];
+  if (sent.count == 0) radio_.tx_written_[type_index].add(source_index);
   ++sent.count;
   sent.bytes += bytes;
   ++radio_.totals_[type_index].tx_count;
@@ -402,7 +403,8 @@ void ContendedMedium::delivered(const Transmission& tx, const Reception& r) {
   ++by_node.delivered;
   ++totals_[type_index].delivered;
   const std::size_t stride = radio_.heard_bytes_.size();
-  ++radio_.rx_count_[type_index * stride + r.hot];
+  if (radio_.rx_count_[type_index * stride + r.hot]++ == 0)
+    radio_.rx_written_[type_index].add(r.hot);
   radio_.rx_bytes_[type_index * stride + r.hot] += tx.frame.size_bytes;
   ++radio_.totals_[type_index].rx_count;
   radio_.totals_[type_index].rx_bytes += tx.frame.size_bytes;

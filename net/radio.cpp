@@ -261,6 +261,7 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   const Heard heard = tiled_  ? (links ? hear<true, true>(out) : hear<false, true>(out))
                       : links ? hear<true, false>(out)
                               : hear<false, false>(out);
+  if (sent.count == 0) tx_written_[type_index].add(source_index);
   ++sent.count;
   sent.bytes += bytes;
   book_heard(type_index, bytes, heard);

@@ -410,6 +410,7 @@ class Radio {
     std::uint64_t count = 0, bytes = 0;  // side by side: a transmission touches one cache line
   };
   sim::ZeroedArray<TxCounter> tx_;  // [type][node]; zeroed arrays: unwritten parts cost nothing
+  std::array<sim::WrittenSpan, kMaxMessageTypes> tx_written_{};  // [type]: its nodes' span
   std::array<TypeCounters, kMaxMessageTypes> totals_{};
   // Built-in and registered message types when the radio was built: the per-node counters' stride.
   std::size_t type_count_ = message_type_count();
@@ -423,6 +424,7 @@ class Radio {
   // `mutable`: bulk bookings are kept as difference arrays over slots and folded in when read.
   mutable sim::ZeroedArray<std::uint64_t> heard_bytes_, overheard_count_;  // [hot]
   mutable sim::ZeroedArray<std::uint64_t> rx_count_, rx_bytes_;            // [type][hot]
+  mutable std::array<sim::WrittenSpan, kMaxMessageTypes> rx_written_{};    // [type]: hot span
   // Bulk bookings (sensor grids, no battery): a frame heard by a run of slots [a, c) adds at a
   // and subtracts at c; unsigned wrap-around keeps the folded sums exact.
   // Heard bytes and overheard count packed in one word, so a run end is one write: bytes in the

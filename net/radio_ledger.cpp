@@ -20,17 +20,21 @@ void Radio::prepare_index() {
     heard[n] = heard_bytes_[hot];
     overheard[n] = overheard_count_[hot];
     for (std::size_t t = 0; t < types; ++t) {
+      if (!rx_written_[t].covers(hot)) continue;
       count[n * types + t] = rx_count_[t * old_stride + hot];
       bytes[n * types + t] = rx_bytes_[t * old_stride + hot];
     }
   }
+  rx_written_ = {};  // the hot indices change: found again below
   // Per-type tx counters are by node id with a stride of the node count: re-lay them out. Only
   // the counts that are not zero are written, here and below: pages never written cost nothing.
   sim::ZeroedArray<TxCounter> tx(n_nodes * types);
   const std::size_t old_nodes = tx_.size() / types;
-  for (std::size_t t = 0; t < types; ++t)
-    for (std::size_t n = 0; n < old_nodes; ++n)
+  for (std::size_t t = 0; t < types; ++t) {  // a node keeps its index: the spans stay
+    const std::size_t end = std::min(old_nodes, std::size_t{tx_written_[t].end});
+    for (std::size_t n = tx_written_[t].first; n < end; ++n)
       tx.fill_in(t * n_nodes + n, tx_[t * old_nodes + n]);
+  }
   tx_ = std::move(tx);
   // Sensor grids lie on rows: index them as lines, so frames can be booked run by run.
   std::vector<Vec2> static_positions;
@@ -64,8 +68,10 @@ void Radio::prepare_index() {
     heard_bytes_.fill_in(hot, heard[n]);
     overheard_count_.fill_in(hot, overheard[n]);
     for (std::size_t t = 0; t < types; ++t) {
-      rx_count_.fill_in(t * n_nodes + hot, count[n * types + t]);
-      rx_bytes_.fill_in(t * n_nodes + hot, bytes[n * types + t]);
+      if ((count[n * types + t] | bytes[n * types + t]) == 0) continue;
+      rx_count_[t * n_nodes + hot] = count[n * types + t];
+      rx_bytes_[t * n_nodes + hot] = bytes[n * types + t];
+      rx_written_[t].add(hot);
     }
   }
   index_dirty_ = false;
@@ -98,6 +104,7 @@ void Radio::materialize() const {
       rx_bytes_[t * n + k] += bytes;
       heard_bytes_[k] += bytes;  // a bulk broadcast's receivers heard what they received
     }
+    if (first < end) rx_written_[t].add(first, end);
     rx_count_diff_.zero(t * (n + 1) + first, t * (n + 1) + end + 1);
     rx_bytes_diff_.zero(t * (n + 1) + first, t * (n + 1) + end + 1);
   }
@@ -153,7 +160,7 @@ std::uint64_t Radio::frames_sent(NodeId node) const {
   if (sim::index(node) >= stride) return 0;
   std::uint64_t total = 0;
   for (std::size_t t = 0; t < type_count_; ++t)
-    total += tx_[t * stride + sim::index(node)].count;
+    if (tx_written_[t].covers(sim::index(node))) total += tx_[t * stride + sim::index(node)].count;
   return total;
 }
 
@@ -162,12 +169,12 @@ TypeCounters Radio::counters(NodeId node, MessageType type) const {
   const auto t = static_cast<std::size_t>(type);
   TypeCounters c;
   const std::size_t stride = tx_.size() / type_count_;  // nodes at the last indexing
-  if (sim::index(node) < stride) {
+  if (sim::index(node) < stride && tx_written_[t].covers(sim::index(node))) {
     c.tx_count = tx_[t * stride + sim::index(node)].count;
     c.tx_bytes = tx_[t * stride + sim::index(node)].bytes;
   }
   const std::uint32_t hot = hot_[sim::index(node)];
-  if (hot != kNoHotIndex) {
+  if (hot != kNoHotIndex && rx_written_[t].covers(hot)) {
     c.rx_count = rx_count_[t * heard_bytes_.size() + hot];
     c.rx_bytes = rx_bytes_[t * heard_bytes_.size() + hot];
   }
@@ -219,9 +226,12 @@ sim::Fingerprint Radio::traffic_fingerprint() {
     fp.mix(senders_[n].energy_tx_j);
     fp.mix(static_cast<std::uint64_t>(sim::to_ns(died_at(n))) ^ std::uint64_t{node.alive});
     for (std::size_t t = 0; t < type_count_; ++t) {
-      const TxCounter sent = n < tx_stride ? tx_[t * tx_stride + n] : TxCounter{};
-      const std::uint64_t rx_count = rx_count_[t * rx_stride + hot],
-                          rx_bytes = rx_bytes_[t * rx_stride + hot];
+      // Only where something was written: reading a never-written page costs a page.
+      const TxCounter sent =
+          n < tx_stride && tx_written_[t].covers(n) ? tx_[t * tx_stride + n] : TxCounter{};
+      const bool received = rx_written_[t].covers(hot);
+      const std::uint64_t rx_count = received ? rx_count_[t * rx_stride + hot] : 0,
+                          rx_bytes = received ? rx_bytes_[t * rx_stride + hot] : 0;
       if ((sent.count | sent.bytes | rx_count | rx_bytes) == 0)
         continue;  // most nodes use few types
       fp.mix(std::uint64_t{t} << 56 ^ n);

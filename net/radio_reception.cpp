@@ -165,6 +165,7 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
   std::uint64_t* const overheard = overheard_count_.data();
   std::uint64_t* const rx_count = rx_count_.data() + type_index * heard_bytes_.size();
   std::uint64_t* const rx_bytes = rx_bytes_.data() + type_index * heard_bytes_.size();
+  sim::WrittenSpan& rx_written = rx_written_[type_index];
   std::uint64_t received = 0, lost = 0;
   const bool drains = battery && params_.energy.idle_power_w > 0;
   const std::uint32_t* const interest = interest_.data();
@@ -192,7 +193,7 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
         return;
       }
     }
-    ++rx_count[hot];
+    if (rx_count[hot]++ == 0) rx_written.add(hot);
     rx_bytes[hot] += bytes;
     ++received;
     if (interest[hot] & type_bit) receivers.push_back(id);

@@ -101,8 +101,9 @@ Radio::TileLedger Radio::tile_ledger(std::uint32_t from, std::uint32_t to) {
     ledger.senders.push_back(senders_[n]);
     ledger.heard_bytes.push_back(heard_bytes_[k]);
     ledger.overheard_count.push_back(overheard_count_[k]);
-    for (std::size_t t = 0; t < type_count_; ++t) {
-      ledger.tx[t * width + i] = tx_[t * tx_stride + n];
+    for (std::size_t t = 0; t < type_count_; ++t) {  // zero where nothing was written
+      if (tx_written_[t].covers(n)) ledger.tx[t * width + i] = tx_[t * tx_stride + n];
+      if (!rx_written_[t].covers(k)) continue;
       ledger.rx_count[t * width + i] = rx_count_[t * rx_stride + k];
       ledger.rx_bytes[t * width + i] = rx_bytes_[t * rx_stride + k];
     }
@@ -133,9 +134,17 @@ void Radio::absorb_tile(const TileLedger& tile) {
     heard_bytes_.fill_in(k, tile.heard_bytes[i]);
     overheard_count_.fill_in(k, tile.overheard_count[i]);
     for (std::size_t t = 0; t < type_count_; ++t) {
-      tx_.fill_in(t * tx_stride + n, tile.tx[t * width + i]);
-      rx_count_.fill_in(t * rx_stride + k, tile.rx_count[t * width + i]);
-      rx_bytes_.fill_in(t * rx_stride + k, tile.rx_bytes[t * width + i]);
+      const TxCounter& sent = tile.tx[t * width + i];
+      if ((sent.count | sent.bytes) != 0) {
+        tx_[t * tx_stride + n] = sent;
+        tx_written_[t].add(n);
+      }
+      const std::uint64_t count = tile.rx_count[t * width + i],
+                          bytes = tile.rx_bytes[t * width + i];
+      if ((count | bytes) == 0) continue;
+      rx_count_[t * rx_stride + k] = count;
+      rx_bytes_[t * rx_stride + k] = bytes;
+      rx_written_[t].add(k);
     }
   }
   // The tile's share of the totals, as it booked it: the sums of the counters above.

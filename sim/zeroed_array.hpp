@@ -1,13 +1,16 @@
 #pragma once
 // A fixed-size array of plain values that starts all zero without writing them. Large arrays are
-// mapped anonymous memory: the kernel hands out a page on its first write, so the parts a run
-// never writes cost no memory (counted in 2 MiB pages where it gives huge ones:
-// sim/huge_pages.hpp). A tile's radio keeps counters for every node of the network and books
-// only its own band; a run in one piece never books most message types at its sensors.
+// mapped anonymous memory: the kernel hands out a page (2 MiB where it gives huge ones:
+// sim/huge_pages.hpp) when it is first touched, so the parts a run never writes cost no memory as
+// long as nobody reads them either (WrittenSpan, below). A tile's radio keeps counters for every
+// node of the network and books only its own band; a run in one piece never books most message
+// types at its sensors.
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <new>
 #include <type_traits>
 #include <utility>
@@ -85,6 +88,24 @@ class ZeroedArray {
 
   T* data_ = nullptr;
   std::size_t size_ = 0;
+};
+
+/// The indices [first, end) of a ZeroedArray (or of one row of it) that may hold values other
+/// than zero. A pass over every element reads only these: on kernels that map no shared zero
+/// page (this project's machine is one), reading a never-written page costs a page as writing
+/// it does (docs/performance.md, "Reading costs memory too").
+struct WrittenSpan {
+  std::uint32_t first = std::numeric_limits<std::uint32_t>::max(), end = 0;
+
+  void add(std::size_t i) {
+    first = std::min(first, static_cast<std::uint32_t>(i));
+    end = std::max(end, static_cast<std::uint32_t>(i + 1));
+  }
+  void add(std::size_t from, std::size_t to) {  // [from, to), not empty
+    first = std::min(first, static_cast<std::uint32_t>(from));
+    end = std::max(end, static_cast<std::uint32_t>(to));
+  }
+  bool covers(std::size_t i) const { return i >= first && i < end; }
 };
 
 }  // namespace masnet::sim

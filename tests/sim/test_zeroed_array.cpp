@@ -1,5 +1,6 @@
 // ZeroedArray (sim/zeroed_array.hpp): all zero from the start, and the pages of a large one that
-// nobody writes are not in memory (mincore asks the kernel which pages are resident).
+// nobody writes are not in memory (mincore asks the kernel which pages are resident); the span of
+// indices a reader must look at (WrittenSpan).
 #include <sys/mman.h>
 #include <unistd.h>
 #include <catch2/catch.hpp>
@@ -69,4 +70,23 @@ TEST_CASE("A large zeroed array takes memory only for the pages written", "[sim]
   CHECK((resident == 1 || resident == static_cast<std::ptrdiff_t>(huge_page_pages)));
   CHECK(std::count(after.begin() + 3 * huge_page_pages, after.begin() + 4 * huge_page_pages,
                    true) == resident);
+}
+
+TEST_CASE("A written span covers every index added and nothing outside them", "[sim]") {
+  masnet::sim::WrittenSpan span;
+  for (const std::size_t i : {std::size_t{0}, std::size_t{5}, std::size_t{1} << 31})
+    CHECK_FALSE(span.covers(i));  // nothing written yet
+  span.add(7);
+  CHECK(span.covers(7));
+  CHECK_FALSE(span.covers(6));
+  CHECK_FALSE(span.covers(8));
+  span.add(3);
+  span.add(std::size_t{20}, std::size_t{25});  // [20, 25)
+  for (std::size_t i = 0; i < 30; ++i) {
+    INFO(i);
+    CHECK(span.covers(i) == (i >= 3 && i < 25));
+  }
+  span.add(1);
+  CHECK(span.first == 1);
+  CHECK(span.end == 25);
 }
