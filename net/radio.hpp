@@ -396,6 +396,7 @@ class Radio {
 
   std::vector<Node> nodes_;
   sim::ZeroedArray<NodeLife> lives_;            // [node]: grown to every node at the first write
+  sim::WrittenSpan lives_written_;              // the nodes life_to_write() was asked for
   std::vector<sim::EventId> depletion_events_;  // [node]: once a battery drains by idling
   const NodeLife& life_of(std::size_t node) const;
   NodeLife& life_to_write(std::size_t node);

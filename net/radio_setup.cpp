@@ -76,7 +76,7 @@ void Radio::add_mobile_node(NodeId id, std::uint64_t random_key) {
 
 const Radio::NodeLife& Radio::life_of(std::size_t node) const {
   static constexpr NodeLife kNoLife{};
-  return node < lives_.size() ? lives_[node] : kNoLife;
+  return lives_written_.covers(node) ? lives_[node] : kNoLife;  // never a page nobody wrote
 }
 
 Radio::NodeLife& Radio::life_to_write(std::size_t node) {
@@ -84,10 +84,11 @@ Radio::NodeLife& Radio::life_to_write(std::size_t node) {
     // Rare: once the nodes are all added, then only for nodes added later. Records still zero
     // are not copied, so their pages stay unwritten.
     sim::ZeroedArray<NodeLife> grown(nodes_.size());
-    for (std::size_t n = 0; n < lives_.size(); ++n)
+    for (std::size_t n = lives_written_.first; n < lives_written_.end; ++n)
       grown.fill_in(n, lives_[n]);
     lives_ = std::move(grown);
   }
+  lives_written_.add(node);
   return lives_[node];
 }
 

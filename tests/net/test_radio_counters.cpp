@@ -1,8 +1,8 @@
 // The radio's per-node counters by message type (Radio::counters), read back against a
 // brute-force tally: frames booked one by one and in bulk, nodes added after the first frames
-// (the counters are laid out again), and types nobody sent. The radio reads only the part of
-// each type's row that was written (sim::WrittenSpan); a span too narrow would read a count as
-// zero here.
+// (the counters are laid out again), and types nobody sent; and the unicasts whose addressee was
+// out of reach, kept in the nodes' rarely written records. The radio reads only the part of each
+// row that was written (sim::WrittenSpan); a span too narrow would read a count as zero here.
 #include <catch2/catch.hpp>
 
 #include <cstdint>
@@ -68,6 +68,7 @@ TEST_CASE("per-type counters of every node equal a brute-force tally, nodes adde
   constexpr std::size_t kTypes = 2;
   const net::MessageType types[kTypes] = {net::MessageType::discover, net::MessageType::position};
   std::map<std::pair<std::uint32_t, std::size_t>, net::TypeCounters> expected;  // (node, type)
+  std::map<std::uint32_t, std::uint64_t> unreachable;  // unicasts whose addressee was too far
   auto send = [&](std::uint32_t src, std::uint32_t dst, double range, std::size_t kind) {
     const Vec2 p = where[src];
     net::Payload payload = kind == 0 ? net::Payload{net::Discover{sim::node_id(src), range, p}}
@@ -80,6 +81,8 @@ TEST_CASE("per-type counters of every node equal a brute-force tally, nodes adde
       if ((where[dst] - p).norm() <= params.max_range) {
         ++expected[{dst, kind}].rx_count;
         expected[{dst, kind}].rx_bytes += bytes;
+      } else {
+        ++unreachable[src];
       }
       radio.unicast(sim::node_id(src), sim::node_id(dst), std::move(payload));
       return;
@@ -113,6 +116,13 @@ TEST_CASE("per-type counters of every node equal a brute-force tally, nodes adde
 
   const std::vector<net::MessageType> every_type = {
       net::MessageType::discover, net::MessageType::position, net::MessageType::neighbor};
+  CHECK(unreachable.size() > 10);  // records written for some nodes only
+  for (std::uint32_t j = 0; j < where.size(); ++j) {
+    INFO("node " << j);
+    const auto it = unreachable.find(j);
+    REQUIRE(radio.stats(sim::node_id(j)).unreachable_count ==
+            (it == unreachable.end() ? 0 : it->second));
+  }
   for (std::uint32_t j = 0; j < where.size(); ++j)
     for (const net::MessageType type : every_type) {
       std::size_t kind = kTypes;
