@@ -334,6 +334,7 @@ class Radio {
   void prepare_index();
   /// Folds the bulk (run-length) bookings into the per-node counters.
   void materialize() const;
+  TypeCounters written_counters(std::size_t type, std::size_t node) const;  // as folded so far
   void prepare_mobile_index();
   /// As the public one, but never visits `skip_a` or `skip_b`, and does not ask where they
   /// are (a unicast's sender and addressee: the addressee is a candidate of every query it

@@ -20,9 +20,9 @@ void Radio::prepare_index() {
     heard[n] = heard_bytes_[hot];
     overheard[n] = overheard_count_[hot];
     for (std::size_t t = 0; t < types; ++t) {
-      if (!rx_written_[t].covers(hot)) continue;
-      count[n * types + t] = rx_count_[t * old_stride + hot];
-      bytes[n * types + t] = rx_bytes_[t * old_stride + hot];
+      const TypeCounters c = written_counters(t, n);
+      count[n * types + t] = c.rx_count;
+      bytes[n * types + t] = c.rx_bytes;
     }
   }
   rx_written_ = {};  // the hot indices change: found again below
@@ -155,30 +155,32 @@ double Radio::type_rx_energy_j(MessageType type) const {
   return net::rx_energy_j(params_.energy, 8.0 * static_cast<double>(heard));
 }
 
+TypeCounters Radio::written_counters(std::size_t type, std::size_t node) const {
+  // Only where something was written (the spans): reading a never-written page costs a page.
+  TypeCounters c;
+  const std::size_t tx_stride = tx_.size() / type_count_;  // nodes at the last indexing
+  if (node < tx_stride && tx_written_[type].covers(node)) {
+    c.tx_count = tx_[type * tx_stride + node].count;
+    c.tx_bytes = tx_[type * tx_stride + node].bytes;
+  }
+  const std::uint32_t hot = hot_[node];
+  if (hot != kNoHotIndex && rx_written_[type].covers(hot)) {
+    c.rx_count = rx_count_[type * heard_bytes_.size() + hot];
+    c.rx_bytes = rx_bytes_[type * heard_bytes_.size() + hot];
+  }
+  return c;
+}
+
 std::uint64_t Radio::frames_sent(NodeId node) const {
-  const std::size_t stride = tx_.size() / type_count_;
-  if (sim::index(node) >= stride) return 0;
   std::uint64_t total = 0;
   for (std::size_t t = 0; t < type_count_; ++t)
-    if (tx_written_[t].covers(sim::index(node))) total += tx_[t * stride + sim::index(node)].count;
+    total += written_counters(t, sim::index(node)).tx_count;
   return total;
 }
 
 TypeCounters Radio::counters(NodeId node, MessageType type) const {
   materialize();
-  const auto t = static_cast<std::size_t>(type);
-  TypeCounters c;
-  const std::size_t stride = tx_.size() / type_count_;  // nodes at the last indexing
-  if (sim::index(node) < stride && tx_written_[t].covers(sim::index(node))) {
-    c.tx_count = tx_[t * stride + sim::index(node)].count;
-    c.tx_bytes = tx_[t * stride + sim::index(node)].bytes;
-  }
-  const std::uint32_t hot = hot_[sim::index(node)];
-  if (hot != kNoHotIndex && rx_written_[t].covers(hot)) {
-    c.rx_count = rx_count_[t * heard_bytes_.size() + hot];
-    c.rx_bytes = rx_bytes_[t * heard_bytes_.size() + hot];
-  }
-  return c;
+  return written_counters(static_cast<std::size_t>(type), sim::index(node));
 }
 
 NodeRadioStats Radio::stats(NodeId node) {
@@ -209,8 +211,6 @@ sim::Fingerprint Radio::traffic_fingerprint() {
   // here as the folded per-node sums, in id order: the value does not depend on who booked them.
   sim::Fingerprint fp;
   const std::size_t n_nodes = nodes_.size();
-  const std::size_t tx_stride = tx_.size() / type_count_;
-  const std::size_t rx_stride = heard_bytes_.size();
   for (std::size_t n = 0; n < n_nodes; ++n) {
     const Node& node = nodes_[n];
     const std::uint32_t hot = hot_[n];
@@ -226,19 +226,14 @@ sim::Fingerprint Radio::traffic_fingerprint() {
     fp.mix(senders_[n].energy_tx_j);
     fp.mix(static_cast<std::uint64_t>(sim::to_ns(died_at(n))) ^ std::uint64_t{node.alive});
     for (std::size_t t = 0; t < type_count_; ++t) {
-      // Only where something was written: reading a never-written page costs a page.
-      const TxCounter sent =
-          n < tx_stride && tx_written_[t].covers(n) ? tx_[t * tx_stride + n] : TxCounter{};
-      const bool received = rx_written_[t].covers(hot);
-      const std::uint64_t rx_count = received ? rx_count_[t * rx_stride + hot] : 0,
-                          rx_bytes = received ? rx_bytes_[t * rx_stride + hot] : 0;
-      if ((sent.count | sent.bytes | rx_count | rx_bytes) == 0)
+      const TypeCounters c = written_counters(t, n);
+      if ((c.tx_count | c.tx_bytes | c.rx_count | c.rx_bytes) == 0)
         continue;  // most nodes use few types
       fp.mix(std::uint64_t{t} << 56 ^ n);
-      fp.mix(sent.count);
-      fp.mix(sent.bytes);
-      fp.mix(rx_count);
-      fp.mix(rx_bytes);
+      fp.mix(c.tx_count);
+      fp.mix(c.tx_bytes);
+      fp.mix(c.rx_count);
+      fp.mix(c.rx_bytes);
     }
   }
   return fp;

@@ -85,8 +85,7 @@ Radio::TileLedger Radio::tile_ledger(std::uint32_t from, std::uint32_t to) {
   ledger.first_slot = from;
   ledger.end_slot = to;
   if (from == owned_first_) ledger.totals = static_share_;  // once, with the first slots
-  const std::size_t width = to - from, tx_stride = tx_.size() / type_count_;
-  const std::size_t rx_stride = heard_bytes_.size();
+  const std::size_t width = to - from;
   ledger.nodes.reserve(width);
   ledger.senders.reserve(width);
   ledger.heard_bytes.reserve(width);
@@ -101,11 +100,11 @@ Radio::TileLedger Radio::tile_ledger(std::uint32_t from, std::uint32_t to) {
     ledger.senders.push_back(senders_[n]);
     ledger.heard_bytes.push_back(heard_bytes_[k]);
     ledger.overheard_count.push_back(overheard_count_[k]);
-    for (std::size_t t = 0; t < type_count_; ++t) {  // zero where nothing was written
-      if (tx_written_[t].covers(n)) ledger.tx[t * width + i] = tx_[t * tx_stride + n];
-      if (!rx_written_[t].covers(k)) continue;
-      ledger.rx_count[t * width + i] = rx_count_[t * rx_stride + k];
-      ledger.rx_bytes[t * width + i] = rx_bytes_[t * rx_stride + k];
+    for (std::size_t t = 0; t < type_count_; ++t) {
+      const TypeCounters c = written_counters(t, n);  // the static node n is slot k
+      ledger.tx[t * width + i] = TxCounter{c.tx_count, c.tx_bytes};
+      ledger.rx_count[t * width + i] = c.rx_count;
+      ledger.rx_bytes[t * width + i] = c.rx_bytes;
     }
   }
   return ledger;
