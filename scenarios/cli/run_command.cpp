@@ -206,8 +206,10 @@ int run_run_command(const RunArgs& args) {
   const ScenarioDef& def = run.def();
   try {
     // Log lines on the terminal would break into the progress line: one or the other.
-    ProgressBar bar(def.duration_s, root && !args.quiet && !logging.shows_on_terminal &&
-                                        ProgressBar::stderr_is_terminal());
+    // The twins run first, each for the whole duration: the line counts them in.
+    ProgressBar bar(def.duration_s * run.passes(), root && !args.quiet &&
+                                                       !logging.shows_on_terminal &&
+                                                       ProgressBar::stderr_is_terminal());
     run.execute([&](double t, std::uint64_t events) { bar.update(t, events); },
                 live ? &live->watcher() : nullptr);
   } catch (const std::exception& e) {

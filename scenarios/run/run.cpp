@@ -19,22 +19,55 @@ std::unique_ptr<sim::Simulator> make_simulator(const ScenarioDef& def) {
   if (def.ties_by_origin) simulator->order_ties_by_origin();  // before the world schedules
   return simulator;
 }
+
+bool has_baseline_twin(const ScenarioDef& def) {
+  return def.baseline && def.world.dispenser.enabled;
+}
+bool has_fault_free_twin(const ScenarioDef& def) {
+  return !def.world.faults.empty();
+}
+// What every twin drops: its own baseline, snapshots and replay (a twin runs no twins).
+ScenarioDef twin_base(const ScenarioDef& def) {
+  ScenarioDef twin = def;
+  twin.baseline = false;
+  twin.output.snapshots.clear();
+  twin.output.replay = false;
+  return twin;
+}
 }  // namespace
 
 Run::Run(ScenarioDef def, unsigned tiles, unsigned threads, TileLink* link)
-    : def_(std::move(def)), simulator_(make_simulator(def_)) {
+    : def_(std::move(def)),
+      tiles_wanted_(tiles),
+      threads_(threads),
+      link_(link),
+      // Only the process that writes the outputs needs the twins (over ranks, the first).
+      runs_twins_((has_baseline_twin(def_) || has_fault_free_twin(def_)) &&
+                  (!link || link->rank() == 0)),
+      simulator_(make_simulator(def_)) {
+  // A run with twins builds its world after them (execute), so that a twin and the run's own
+  // world never take memory together.
+  if (!runs_twins_) build();
+}
+
+Run::Run(ScenarioDef def, TwinTag) : def_(std::move(def)), simulator_(make_simulator(def_)) {
+  build();
+}
+
+void Run::build() {
+  unsigned threads = threads_;
   if (threads == 0) threads = static_cast<unsigned>(sim::allowed_cpu_count());
   RunTiles::Building others;
-  if (tiles > 1) {
-    MASNET_ASSERT(tiles_problem(def_, tiles).empty(), "a scenario the tiles run");
-    if (!link) others = RunTiles::build_others(def_.world, tiles, threads);
+  if (tiles_wanted_ > 1) {
+    MASNET_ASSERT(tiles_problem(def_, tiles_wanted_).empty(), "a scenario the tiles run");
+    if (!link_) others = RunTiles::build_others(def_.world, tiles_wanted_, threads);
   }
   world_ = std::make_unique<agents::World>(*simulator_, def_.world);
   recorder_ = std::make_unique<Recorder>(*world_, def_);
   world_->set_observer(recorder_.get());
-  if (tiles > 1)
-    tiles_ = std::make_unique<RunTiles>(*simulator_, *world_, def_.world, tiles, threads, link,
-                                        std::move(others));
+  if (tiles_wanted_ > 1)
+    tiles_ = std::make_unique<RunTiles>(*simulator_, *world_, def_.world, tiles_wanted_, threads,
+                                        link_, std::move(others));
   if (world_->group_count() > 0) formation_ = std::make_unique<FormationRecorder>(*world_);
 }
 
@@ -58,8 +91,28 @@ constexpr std::uint64_t kProgressEveryEvents = 4096;
 constexpr std::size_t kReplayStream = 0, kWatcherStream = 1;
 }  // namespace
 
+unsigned Run::passes() const {
+  if (!runs_twins_) return 1;
+  return 1 + unsigned{has_baseline_twin(def_)} + unsigned{has_fault_free_twin(def_)};
+}
+
 void Run::execute(const ProgressFn& progress, RunWatcher* watcher) {
   const auto wall_start = std::chrono::steady_clock::now();
+  // Twins first, unless someone watches: the viewer shows the run itself at once.
+  if (runs_twins_ && !watcher) run_twins(progress);
+  if (!world_) {
+    if (twins_done_)
+      sim::Log(*simulator_).info("the run itself starts now; its clock starts again at 0");
+    build();
+  }
+  simulate(progress, watcher);
+  if (runs_twins_ && !twins_done_) run_twins({});
+  attach_twins();
+  wall_time_s_ =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+}
+
+void Run::simulate(const ProgressFn& progress, RunWatcher* watcher) {
   world_->start();
   if (tiles_) tiles_->start();
   // Checkpoints on integer grids of each period (no accumulated rounding): the recorder, the
@@ -81,10 +134,11 @@ void Run::execute(const ProgressFn& progress, RunWatcher* watcher) {
   // Between checkpoints too (a large run may spend seconds of wall time in one chunk): the
   // kernel calls back every few thousand events, and the callee decides from the wall clock
   // whether to draw.
+  const Done done = done_;  // the twins' passes, when they ran first
   if (progress)
     simulator_->set_progress_hook(kProgressEveryEvents,
-                                  [&progress](sim::Time now, std::uint64_t events) {
-                                    progress(sim::to_seconds(now), events);
+                                  [&progress, done](sim::Time now, std::uint64_t events) {
+                                    progress(done.t_s + sim::to_seconds(now), done.events + events);
                                   });
   bool stopped_after_update = false;
   if (watcher) {
@@ -151,7 +205,8 @@ void Run::execute(const ProgressFn& progress, RunWatcher* watcher) {
       watcher->on_frame(frame_for(kWatcherStream, now));
       ++next_frame;
     }
-    if (progress) progress(sim::to_seconds(next), simulator_->events_run());
+    if (progress)
+      progress(done.t_s + sim::to_seconds(next), done.events + simulator_->events_run());
     if (next == end) break;
   }
   simulator_->set_progress_hook(0, nullptr);
@@ -167,46 +222,63 @@ void Run::execute(const ProgressFn& progress, RunWatcher* watcher) {
   }
   traffic_fingerprint_ =
       world_->radio().traffic_fingerprint().hex();  // a pass over every node: once
-  if (def_.baseline && def_.world.dispenser.enabled) {
-    // The uncontrolled twin: same scenario and seed, dispensers off, so that with/without
-    // control always sit side by side (docs/field-models.md).
-    ScenarioDef twin = def_;
-    twin.world.dispenser.enabled = false;
-    twin.baseline = false;
-    twin.output.snapshots.clear();
-    twin.output.replay = false;
-    Run baseline(twin);
-    sim::Log(*simulator_)
-        .info("the baseline twin (no dispensers) runs now; its clock starts again at 0");
-    baseline.execute();
-    recorder_->attach_baseline(baseline.recorder().samples());
-    baseline_fingerprint_ = baseline.fingerprint();
-  }
-  if (!def_.world.faults.empty()) run_fault_free_twin();
-  wall_time_s_ =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 }
 
-void Run::run_fault_free_twin() {
-  // The same scenario and seed without its faults: what the faults cost is the difference
-  // (docs/outputs.md, `twin` and `recovery`).
-  ScenarioDef twin = def_;
-  twin.world.faults.clear();
-  twin.baseline = false;
-  twin.output.snapshots.clear();
-  twin.output.replay = false;
-  Run fault_free(twin);
-  sim::Log(*simulator_).info("the fault-free twin runs now; its clock starts again at 0");
-  fault_free.execute();
-  recorder_->attach_twin(fault_free.recorder().samples());
-  const nlohmann::json metrics = fault_free.recorder().summary_metrics();
-  twin_ = {{"fingerprint", fault_free.fingerprint()},
-           {"coverage_final_cost", metrics.at("coverage").at("final_cost")},
-           {"tracking_mean_error", metrics.contains("tracking")
-                                       ? metrics["tracking"].value("mean_error", nlohmann::json())
-                                       : nlohmann::json()},
-           {"energy_total_j", metrics.at("energy_j").at("total")},
-           {"updates", metrics.at("protocol").at("updates")}};
+void Run::run_twins(const ProgressFn& progress) {
+  // Announced on the run's own log: before the run, its simulator is still at 0.
+  const char* when = world_ ? "now" : "first";
+  // A twin's progress continues the passes before it.
+  const auto twin_progress = [&](double t_s, std::uint64_t events) {
+    if (progress) progress(done_.t_s + t_s, done_.events + events);
+  };
+  const auto after = [&](const Run& twin) {
+    done_.t_s += def_.duration_s;
+    done_.events += twin.events();
+  };
+  if (has_baseline_twin(def_)) {
+    // The uncontrolled twin: same scenario and seed, dispensers off, so that with/without
+    // control always sit side by side (docs/field-models.md).
+    ScenarioDef def = twin_base(def_);
+    def.world.dispenser.enabled = false;
+    Run baseline(std::move(def), TwinTag{});
+    sim::Log(*simulator_)
+        .info("the baseline twin (no dispensers) runs {}; its clock starts {}at 0", when,
+              world_ ? "again " : "");
+    baseline.execute(twin_progress);
+    baseline_samples_ = baseline.recorder().samples();
+    baseline_fingerprint_ = baseline.fingerprint();
+    after(baseline);
+  }
+  if (has_fault_free_twin(def_)) {
+    // The same scenario and seed without its faults: what the faults cost is the difference
+    // (docs/outputs.md, `twin` and `recovery`).
+    ScenarioDef def = twin_base(def_);
+    def.world.faults.clear();
+    Run fault_free(std::move(def), TwinTag{});
+    sim::Log(*simulator_)
+        .info("the fault-free twin runs {}; its clock starts {}at 0", when,
+              world_ || has_baseline_twin(def_) ? "again " : "");
+    fault_free.execute(twin_progress);
+    twin_samples_ = fault_free.recorder().samples();
+    const nlohmann::json metrics = fault_free.recorder().summary_metrics();
+    twin_ = {{"fingerprint", fault_free.fingerprint()},
+             {"coverage_final_cost", metrics.at("coverage").at("final_cost")},
+             {"tracking_mean_error", metrics.contains("tracking")
+                                         ? metrics["tracking"].value("mean_error", nlohmann::json())
+                                         : nlohmann::json()},
+             {"energy_total_j", metrics.at("energy_j").at("total")},
+             {"updates", metrics.at("protocol").at("updates")}};
+    after(fault_free);
+  }
+  twins_done_ = true;
+}
+
+void Run::attach_twins() {
+  if (!twins_done_) return;
+  if (has_baseline_twin(def_)) recorder_->attach_baseline(baseline_samples_);
+  if (has_fault_free_twin(def_)) recorder_->attach_twin(twin_samples_);
+  baseline_samples_ = {};
+  twin_samples_ = {};
 }
 
 nlohmann::json Run::summary() const {

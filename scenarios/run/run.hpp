@@ -25,13 +25,20 @@ class Run {
   /// `tiles` > 1 cuts the run into that many tiles by space (run_tiles.hpp; `tiles_problem`
   /// must be empty) on `threads` threads (0: one per allowed processor, at most one per tile);
   /// with a `link`, over its ranks instead, one tile each (the first rank's run is the whole).
+  /// A run with twins (faults; `baseline` with dispensers) builds its world in execute(),
+  /// after them; the accessors below are for after execute().
   explicit Run(ScenarioDef def, unsigned tiles = 1, unsigned threads = 0, TileLink* link = nullptr);
   ~Run();
   /// The scenario it runs (moved in: hold on to this rather than a copy).
   const ScenarioDef& def() const { return def_; }
 
-  /// Simulates the whole duration; `watcher` (may be null) sees it as it happens.
+  /// Simulates the whole duration; `watcher` (may be null) sees it as it happens. The twins run
+  /// first, each for the whole duration too, and `progress` counts their simulated time and
+  /// events with the run's (from 0 to passes() × the duration); a watched run starts at once
+  /// and its twins run after it.
   void execute(const ProgressFn& progress = {}, RunWatcher* watcher = nullptr);
+  /// 1 + the number of twins this process runs (the first rank's, over ranks).
+  unsigned passes() const;
 
   /// summary.json: the keys of docs/outputs.md.
   nlohmann::json summary() const;
@@ -51,11 +58,29 @@ class Run {
   double wall_time_s() const { return wall_time_s_; }
 
  private:
+  struct TwinTag {};
+  /// A twin: the scenario as given, in one piece, without twins of its own.
+  Run(ScenarioDef def, TwinTag);
+  /// Builds the simulator's world, the recorder and the tiles.
+  void build();
+  /// The run itself, from its start to its end; `progress` offset by the passes done.
+  void simulate(const ProgressFn& progress, RunWatcher* watcher);
+  /// Runs the twins, keeping only their samples and figures.
+  void run_twins(const ProgressFn& progress);
+  /// Gives the recorder the twins' curves (same sample times).
+  void attach_twins();
   void write_replay(const std::string& path) const;
-  /// Runs the scenario again without its faults and attaches that twin's curves.
-  void run_fault_free_twin();
 
   ScenarioDef def_;  // a copy: the world and recorder refer to it for the whole run
+  unsigned tiles_wanted_ = 1, threads_ = 0;
+  TileLink* link_ = nullptr;
+  bool runs_twins_ = false;  // the whole run's process, with faults or a baseline to compare
+  bool twins_done_ = false;
+  // Progress of earlier passes (the twins run first): simulated seconds and events.
+  struct Done {
+    double t_s = 0;
+    std::uint64_t events = 0;
+  } done_;
   std::unique_ptr<sim::Simulator> simulator_;
   std::unique_ptr<agents::World> world_;
   std::unique_ptr<Recorder> recorder_;
@@ -65,6 +90,7 @@ class Run {
   std::vector<std::string> replay_frames_;  // serialised: a run may hold thousands
   double wall_time_s_ = 0.0;
   std::string baseline_fingerprint_;
+  std::vector<Sample> baseline_samples_, twin_samples_;  // the twins' curves, kept till attached
   nlohmann::json twin_;  // runs with faults: the fault-free twin's figures
   std::string traffic_fingerprint_;
 };

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `masnet run` started by mpirun: one run in one tile per rank (docs/decisions/0012-partitioned-
 # runs.md). Every file of the run directory equals the run in one piece but for what the run cost
-# (summary.json's events and wall time); --tiles other than the number of ranks is refused, and a
+# (summary.json's events and wall time), with a fault too; --tiles other than the number of ranks is refused, and a
 # scenario file one rank cannot read stops every rank (exit 2, the message once, never a hang).
 # Usage: run_over_ranks.sh <masnet> <mpiexec> <source dir> <ranks>
 set -euo pipefail
@@ -13,24 +13,33 @@ scenario=(run "$source/scenarios/paper/acoustic_tracking.yaml" --set tie_order=o
   --set output.report=false --quiet)
 mpi=("$mpiexec" --oversubscribe --allow-run-as-root -n "$ranks")
 
-"$masnet" "${scenario[@]}" --out "$work/whole"
-"${mpi[@]}" "$masnet" "${scenario[@]}" --out "$work/ranks" 2> "$work/ranks.stderr"
-# More ranks than processors is warned of, once; as many or fewer, not.
-if [ "$ranks" -gt "$(nproc)" ]; then
-  [ "$(grep -c '^masnet run: warning: more MPI ranks than processors on a host' "$work/ranks.stderr")" = 1 ]
-else
-  [ ! -s "$work/ranks.stderr" ]
-fi
-for f in "$work"/whole/*; do
-  name=$(basename "$f")
-  if [ "$name" = summary.json ]; then
-    diff <(grep -v '"events"\|"wall_time_s"' "$f") \
-      <(grep -v '"events"\|"wall_time_s"' "$work/ranks/$name")
+# The run, and the run with a fault (whose fault-free twin only the first rank runs), over ranks
+# and in one piece.
+with_fault=(--set 'faults=[{at: 0.5, kill: robots, ids: [0]}]')
+for variant in plain fault; do
+  extra=()
+  [ "$variant" = fault ] && extra=("${with_fault[@]}")
+  "$masnet" "${scenario[@]}" "${extra[@]}" --out "$work/whole-$variant"
+  "${mpi[@]}" "$masnet" "${scenario[@]}" "${extra[@]}" --out "$work/ranks-$variant" \
+    2> "$work/ranks.stderr"
+  # More ranks than processors is warned of, once; as many or fewer, not.
+  if [ "$ranks" -gt "$(nproc)" ]; then
+    [ "$(grep -c '^masnet run: warning: more MPI ranks than processors on a host' "$work/ranks.stderr")" = 1 ]
   else
-    cmp "$f" "$work/ranks/$name"
+    [ ! -s "$work/ranks.stderr" ]
   fi
+  for f in "$work/whole-$variant"/*; do
+    name=$(basename "$f")
+    if [ "$name" = summary.json ]; then
+      diff <(grep -v '"events"\|"wall_time_s"' "$f") \
+        <(grep -v '"events"\|"wall_time_s"' "$work/ranks-$variant/$name")
+    else
+      cmp "$f" "$work/ranks-$variant/$name"
+    fi
+  done
+  [ "$(ls "$work/whole-$variant")" = "$(ls "$work/ranks-$variant")" ]
 done
-[ "$(ls "$work/whole")" = "$(ls "$work/ranks")" ]
+grep -q '"twin"' "$work/ranks-fault/summary.json"
 
 # One tile per rank: another count is refused before anything runs.
 status=0

@@ -18,6 +18,7 @@
 #include "scenarios/run/energy_outputs.hpp"
 #include "scenarios/run/lifetime_outputs.hpp"
 #include "scenarios/run/run.hpp"
+#include "scenarios/run/run_watcher.hpp"
 #include "sim/random.hpp"
 
 using namespace masnet;
@@ -88,6 +89,21 @@ json without_wall_time(json j) {
   j.erase("wall_time_s");
   return j;
 }
+
+// Watches and does nothing: a watched run's twins run after it.
+class IdleWatcher final : public RunWatcher {
+ public:
+  double frame_period_s() const override { return 0.5; }
+  void on_start(const json&) override {}
+  void on_frame(const json&) override {}
+  bool stop_after_update() override { return false; }
+  void on_end(const json&) override {}
+};
+
+struct ProgressCall {
+  double t_s;
+  std::uint64_t events;
+};
 
 }  // namespace
 
@@ -270,6 +286,56 @@ TEST_CASE("a run with faults has a fault-free twin, lifetime and recovery, one w
   CHECK(nodes.column("alive")[0] == 0);
   CHECK(nodes.column("died_at_s")[0] == 0.5);
   fs::remove_all(dp.parent_path());
+}
+
+TEST_CASE("the twin runs before the run and the progress counts both, a watched run's after",
+          "[scenarios]") {
+  Run plain(acoustic(0)), faulty(acoustic(0.5)), watched(acoustic(0.5));
+  CHECK(plain.passes() == 1);
+  CHECK(faulty.passes() == 2);
+  plain.execute();
+  std::vector<ProgressCall> calls, watched_calls;
+  faulty.execute([&](double t_s, std::uint64_t events) { calls.push_back({t_s, events}); });
+  IdleWatcher watcher;
+  watched.execute(
+      [&](double t_s, std::uint64_t events) {
+        watched_calls.push_back({t_s, events});
+      },
+      &watcher);
+  // Unwatched: the twin's pass (the plain run's events) from 0 to 1.5 s, then the run's own.
+  REQUIRE(!calls.empty());
+  for (std::size_t k = 1; k < calls.size(); ++k) {
+    CHECK(calls[k].t_s >= calls[k - 1].t_s);
+    CHECK(calls[k].events >= calls[k - 1].events);
+  }
+  const auto end_of_twin =
+      std::find_if(calls.begin(), calls.end(), [](const ProgressCall& c) { return c.t_s == 1.5; });
+  REQUIRE(end_of_twin != calls.end());
+  CHECK(end_of_twin->events == plain.events());
+  CHECK(calls.back().t_s == 3.0);
+  CHECK(calls.back().events == plain.events() + faulty.events());
+  // Watched: the run first, its progress only.
+  REQUIRE(!watched_calls.empty());
+  CHECK(watched_calls.back().t_s == 1.5);
+  CHECK(watched_calls.back().events == watched.events());
+  // Either order, the same run and the same twin.
+  CHECK(without_wall_time(faulty.summary()) == without_wall_time(watched.summary()));
+  const fs::path da = fresh_dir("first"), db = fresh_dir("after");
+  faulty.write_files(da.string());
+  watched.write_files(db.string());
+  for (const char* file : {"nodes.csv", "timeseries.csv", "trajectories.csv", "updates.csv"})
+    CHECK(slurp(da / file) == slurp(db / file));
+  fs::remove_all(da.parent_path());
+}
+
+TEST_CASE("a diffusion run counts its baseline twin and its fault-free twin as passes",
+          "[scenarios]") {
+  CHECK(Run(load("scenarios/paper/pollution_control.yaml", {})).passes() == 2);
+  CHECK(Run(load("scenarios/paper/pollution_control.yaml", {"control.baseline=false"})).passes() ==
+        1);
+  CHECK(Run(load("scenarios/paper/pollution_control.yaml",
+                 {"faults=[{at: 1.0, kill: robots, ids: [0]}]"}))
+            .passes() == 3);
 }
 
 TEST_CASE("energy by type and by phase each add up to the radio's transmit and receive energy",
