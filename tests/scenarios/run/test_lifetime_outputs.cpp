@@ -90,6 +90,17 @@ json without_wall_time(json j) {
   return j;
 }
 
+// The summary but for the wall time, and every file of the two runs, are the same.
+void check_same_outputs(const Run& a, const Run& b) {
+  CHECK(without_wall_time(a.summary()) == without_wall_time(b.summary()));
+  const fs::path da = fresh_dir("a"), db = fresh_dir("b");
+  a.write_files(da.string());
+  b.write_files(db.string());
+  for (const char* file : {"nodes.csv", "timeseries.csv", "trajectories.csv", "updates.csv"})
+    CHECK(slurp(da / file) == slurp(db / file));
+  fs::remove_all(da.parent_path());
+}
+
 // Watches and does nothing: a watched run's twins run after it.
 class IdleWatcher final : public RunWatcher {
  public:
@@ -319,13 +330,7 @@ TEST_CASE("the twin runs before the run and the progress counts both, a watched 
   CHECK(watched_calls.back().t_s == 1.5);
   CHECK(watched_calls.back().events == watched.events());
   // Either order, the same run and the same twin.
-  CHECK(without_wall_time(faulty.summary()) == without_wall_time(watched.summary()));
-  const fs::path da = fresh_dir("first"), db = fresh_dir("after");
-  faulty.write_files(da.string());
-  watched.write_files(db.string());
-  for (const char* file : {"nodes.csv", "timeseries.csv", "trajectories.csv", "updates.csv"})
-    CHECK(slurp(da / file) == slurp(db / file));
-  fs::remove_all(da.parent_path());
+  check_same_outputs(faulty, watched);
 }
 
 TEST_CASE("a diffusion run counts its baseline twin and its fault-free twin as passes",
@@ -404,11 +409,5 @@ TEST_CASE("the same faulty scenario and seed give identical outputs apart from w
   Run a(acoustic(0.5)), b(acoustic(0.5));
   a.execute();
   b.execute();
-  CHECK(without_wall_time(a.summary()) == without_wall_time(b.summary()));
-  const fs::path da = fresh_dir("det-a"), db = fresh_dir("det-b");
-  a.write_files(da.string());
-  b.write_files(db.string());
-  for (const char* file : {"nodes.csv", "timeseries.csv", "trajectories.csv", "updates.csv"})
-    CHECK(slurp(da / file) == slurp(db / file));
-  fs::remove_all(da.parent_path());
+  check_same_outputs(a, b);
 }
