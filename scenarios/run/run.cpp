@@ -225,13 +225,17 @@ void Run::simulate(const ProgressFn& progress, RunWatcher* watcher) {
 }
 
 void Run::run_twins(const ProgressFn& progress) {
-  // Announced on the run's own log: before the run, its simulator is still at 0.
-  const char* when = world_ ? "now" : "first";
-  // A twin's progress continues the passes before it.
-  const auto twin_progress = [&](double t_s, std::uint64_t events) {
-    if (progress) progress(done_.t_s + t_s, done_.events + events);
-  };
-  const auto after = [&](const Run& twin) {
+  // One twin: announced on the run's own log (before the run, its simulator is still at 0),
+  // its progress continuing the passes before it; `keep` takes what the run needs of it.
+  const auto run_twin = [&](ScenarioDef def, const char* name, const auto& keep) {
+    Run twin(std::move(def), TwinTag{});
+    sim::Log(*simulator_)
+        .info("the {} runs {}; its clock starts {}at 0", name, world_ ? "now" : "first",
+              world_ || done_.t_s > 0 ? "again " : "");
+    twin.execute([&](double t_s, std::uint64_t events) {
+      if (progress) progress(done_.t_s + t_s, done_.events + events);
+    });
+    keep(twin);
     done_.t_s += def_.duration_s;
     done_.events += twin.events();
   };
@@ -240,35 +244,28 @@ void Run::run_twins(const ProgressFn& progress) {
     // control always sit side by side (docs/field-models.md).
     ScenarioDef def = twin_base(def_);
     def.world.dispenser.enabled = false;
-    Run baseline(std::move(def), TwinTag{});
-    sim::Log(*simulator_)
-        .info("the baseline twin (no dispensers) runs {}; its clock starts {}at 0", when,
-              world_ ? "again " : "");
-    baseline.execute(twin_progress);
-    baseline_samples_ = baseline.recorder().samples();
-    baseline_fingerprint_ = baseline.fingerprint();
-    after(baseline);
+    run_twin(std::move(def), "baseline twin (no dispensers)", [&](const Run& baseline) {
+      baseline_samples_ = baseline.recorder().samples();
+      baseline_fingerprint_ = baseline.fingerprint();
+    });
   }
   if (has_fault_free_twin(def_)) {
     // The same scenario and seed without its faults: what the faults cost is the difference
     // (docs/outputs.md, `twin` and `recovery`).
     ScenarioDef def = twin_base(def_);
     def.world.faults.clear();
-    Run fault_free(std::move(def), TwinTag{});
-    sim::Log(*simulator_)
-        .info("the fault-free twin runs {}; its clock starts {}at 0", when,
-              world_ || has_baseline_twin(def_) ? "again " : "");
-    fault_free.execute(twin_progress);
-    twin_samples_ = fault_free.recorder().samples();
-    const nlohmann::json metrics = fault_free.recorder().summary_metrics();
-    twin_ = {{"fingerprint", fault_free.fingerprint()},
-             {"coverage_final_cost", metrics.at("coverage").at("final_cost")},
-             {"tracking_mean_error", metrics.contains("tracking")
-                                         ? metrics["tracking"].value("mean_error", nlohmann::json())
-                                         : nlohmann::json()},
-             {"energy_total_j", metrics.at("energy_j").at("total")},
-             {"updates", metrics.at("protocol").at("updates")}};
-    after(fault_free);
+    run_twin(std::move(def), "fault-free twin", [&](const Run& fault_free) {
+      twin_samples_ = fault_free.recorder().samples();
+      const nlohmann::json metrics = fault_free.recorder().summary_metrics();
+      twin_ = {
+          {"fingerprint", fault_free.fingerprint()},
+          {"coverage_final_cost", metrics.at("coverage").at("final_cost")},
+          {"tracking_mean_error", metrics.contains("tracking")
+                                      ? metrics["tracking"].value("mean_error", nlohmann::json())
+                                      : nlohmann::json()},
+          {"energy_total_j", metrics.at("energy_j").at("total")},
+          {"updates", metrics.at("protocol").at("updates")}};
+    });
   }
   twins_done_ = true;
 }
