@@ -44,11 +44,14 @@ class World::RobotAgent final : public protocols::RobotHost {
     alive_ = true;
     ++restarts_;
     make_protocol();
+    if (!world_.robots_here_) return;  // a ghost: its home tile starts the protocol
     const std::uint32_t generation = generation_;
     world_.simulator_.after(sim::Duration{0}, [this, generation] {
       if (generation == generation_) protocol_->start();
     });
   }
+  /// Changes when the robot goes down or comes back: a course chosen before does not apply.
+  std::uint32_t generation() const { return generation_; }
   /// ∫|v| dt and ∫|a| dt since the start of the run (world units, world units / s).
   TravelIntegrals travel() const {
     TravelIntegrals total = travelled_;
@@ -99,6 +102,11 @@ class World::RobotAgent final : public protocols::RobotHost {
       // robot that went down meanwhile never starts it.
       const double x = target.x(), y = target.y();
       const std::uint32_t generation = generation_;
+      const sim::Time when = now() + delay;
+      if (world_.keeps_courses_)  // the other tiles' ghosts of it steer with the same key
+        world_.course_outbox_.push_back(World::Course{when, world_.simulator_.peek_key(when),
+                                                      static_cast<std::uint32_t>(index_),
+                                                      generation, x, y});
       world_.simulator_.after(delay, [this, x, y, generation] {
         if (generation == generation_) steer(Vec2{x, y});
       });

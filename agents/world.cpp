@@ -144,7 +144,7 @@ const net::SpatialGrid& World::sensor_grid() const {
 void World::start() {
   // Each node's first events are scheduled acting as the node (the kernel's origin order:
   // counted as the world's, they would be numbered by how many nodes came before).
-  for (std::size_t i = 0; i < robots_.size(); ++i) {
+  for (std::size_t i = 0; i < robots_.size() && robots_here_; ++i) {
     RobotAgent* agent = robots_[i].get();
     simulator_.after_as(sim::origin_of(robot_node(i)), sim::Duration{0},
                         [agent] { agent->protocol().start(); });
@@ -161,12 +161,30 @@ void World::start() {
                         [this, node] { send_beacon(node); });
   };
   if (b.senders == BeaconSenders::robots || b.senders == BeaconSenders::all)
-    for (std::size_t i = 0; i < robots_.size(); ++i)
+    for (std::size_t i = 0; i < robots_.size() && robots_here_; ++i)
       schedule(robot_node(i), robot_key(i));
   // A tile of a partitioned run sends its own sensors' beacons (every tile runs every robot).
   if (b.senders == BeaconSenders::sensors || b.senders == BeaconSenders::all)
     for (std::size_t s = 0; s < def_.sensors.size(); ++s)
       if (radio_.owns(sensor_node(s))) schedule(sensor_node(s), sensor_key(s));
+}
+
+void World::home_robots(bool here) {
+  MASNET_ASSERT(actuation_delay_.count() > 0, "robots in one tile act after a delay");
+  radio_.home_mobiles(here);
+  robots_here_ = here;
+  keeps_courses_ = here;
+}
+
+void World::take_course(const Course& course) {
+  MASNET_ASSERT(!robots_here_ && course.robot < robots_.size(), "a course of a ghost robot");
+  RobotAgent* agent = robots_[course.robot].get();
+  const std::uint32_t generation = course.generation;
+  const double x = course.x, y = course.y;
+  simulator_.at_keyed(course.when, course.key, sim::origin_of(robot_node(course.robot)),
+                      [agent, generation, x, y] {
+                        if (agent->generation() == generation) agent->steer(Vec2{x, y});
+                      });
 }
 
 void World::absorb_tile(const TileCounts& counts, const net::Radio::TileLedger& ledger) {

@@ -159,10 +159,25 @@ class World final : public net::RadioListener,
 
   // ---- Tiles of a partitioned run (docs/decisions/0012-partitioned-runs.md) -----------------
   /// This world is one tile: its radio's static slots [first, end) are its sensors; it runs them
-  /// and every robot. Before start().
+  /// and every robot (unless told otherwise below). Before start().
   void own_sensor_slots(std::uint32_t first, std::uint32_t end) {
     radio_.own_static_slots(first, end);
   }
+  /// Robots in one tile (docs/decisions/0012-partitioned-runs.md, "Robots in the first tile"):
+  /// here, this tile runs every robot and keeps each course they choose for the other tiles; not
+  /// here, its robots are ghosts — no protocol, moved by the courses taken in. Needs an actuation
+  /// delay of at least the tiles' window. Before start().
+  void home_robots(bool here);
+  /// A course a robot chose: it steers towards (x, y) at `when`, as the event `key` of its own —
+  /// unless it went down (a new `generation`) meanwhile.
+  struct Course {
+    sim::Time when{};
+    sim::EventKey key;
+    std::uint32_t robot = 0, generation = 0;
+    double x = 0, y = 0;
+  };
+  std::vector<Course>& course_outbox() { return course_outbox_; }
+  void take_course(const Course& course);
   /// What a tile's sensors counted (readings, point-in-cell tests, clamped readings).
   struct TileCounts {
     std::uint64_t readings = 0, point_in_cell_tests = 0, clamped_readings = 0;
@@ -277,6 +292,8 @@ class World final : public net::RadioListener,
   std::vector<std::vector<NodeId>> fault_victims_;  // [fault]: who it took down
   TileCounts absorbed_;                             // the counts of the tiles this one absorbed
   TileCounts robot_reads_;  // what the robots read themselves (the oracle), of the counts above
+  bool robots_here_ = true, keeps_courses_ = false;  // home_robots()
+  std::vector<Course> course_outbox_;
 };
 
 }  // namespace masnet::agents

@@ -3,11 +3,12 @@
 // (docs/decisions/0012-partitioned-runs.md): what the receiving tile needs to book and deliver
 // the frame to its own nodes exactly as the whole radio would have — the sender, its range and
 // payload, the event key its delivery takes, and the mobile nodes that heard it at send time
-// (every tile runs every mobile node, but learns of the frame only after the window).
+// (the tiles that run them learn of the frame only after the window).
 #include <cstdint>
 #include <vector>
 
 #include "net/messages.hpp"
+#include "net/vec2.hpp"
 #include "sim/event_queue.hpp"
 #include "sim/time.hpp"
 
@@ -17,6 +18,7 @@ struct FrameRecord {
   sim::Time sent_at{}, arrival{};
   sim::EventKey key;  ///< the delivery's key, made by the sender's tile
   NodeId source = sim::kNoNode, destination = sim::kNoNode;
+  Vec2 source_position{0, 0};  ///< at send time (a mobile sender moves on)
   double range = 0.0, destination_distance = -1.0;
   std::uint64_t frame_number = 0;
   std::uint32_t type_index = 0, bytes = 0;

@@ -224,9 +224,11 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
   src.energy_tx_j += tx_j;
   total_tx_j_.add(tx_j);
   tx_j_by_type_[static_cast<std::size_t>(type)].add(tx_j);
-  // A tile's static senders are its own share; the mobile ones are every tile's.
-  const bool shipped = tiled_ && hot_[source_index] < static_ids_.size();
-  if (shipped) [[unlikely]] {
+  // A tile's static senders are its own share; the mobile ones are the share of the first tile,
+  // which runs them all (with every other tile, or alone: then it ships their frames).
+  const bool static_sender = tiled_ && hot_[source_index] < static_ids_.size();
+  const bool shipped = static_sender || ships_mobiles_;
+  if (static_sender) [[unlikely]] {
     static_share_.tx_j.add(tx_j);
     static_share_.tx_j_by_type[static_cast<std::size_t>(type)].add(tx_j);
     ++static_share_.counters[static_cast<std::size_t>(type)].tx_count;
@@ -275,13 +277,15 @@ bool Radio::transmit(NodeId source, NodeId destination, double range, Payload&& 
     // The other tiles' nodes get it from the record, with the key its delivery takes here
     // (taken whether or not anyone needs it: the sender's count is the run in one piece's).
     const sim::EventKey key = simulator_.next_key(arrival);
-    if (needed_by_other_tiles(source, destination, range, heard.destination_reached)) {
+    const Vec2 center = position(source);
+    if (needed_by_other_tiles(center, destination, range, heard.destination_reached)) {
       // Field by field: the sink's one record keeps its buffers' capacity.
       FrameRecord& record = outbox_sink_ ? outgoing_ : outbox_.emplace_back();
       record.sent_at = now;
       record.arrival = arrival;
       record.key = key;
       record.source = source;
+      record.source_position = center;
       record.destination = destination;
       record.range = range;
       record.destination_distance = destination_distance;

@@ -180,10 +180,12 @@ class Radio {
 
   // ---- Tiles of a partitioned run (net/radio_tiles.cpp, docs/decisions/0012) -----------------
   /// Makes this radio one tile of a run cut by space: it books and delivers to the static nodes
-  /// in slots [first, end) of its index and to every mobile node (which every tile runs), and
+  /// in slots [first, end) of its index and to the mobile nodes it runs (all, unless told), and
   /// puts each frame of its static senders into `outbox()` for the other tiles. Needs the
   /// origin order, level ideal or airtime, no jitter, batteries or faults.
   void own_static_slots(std::uint32_t first, std::uint32_t end);
+  /// Robots in one tile: here (every mobile node, their frames shipped too) or not here (none).
+  void home_mobiles(bool here);
   /// Static nodes in slot order (rows of a sensor grid): tiles own contiguous slots.
   const std::vector<NodeId>& static_slots();
   bool owns(NodeId node) const;
@@ -523,19 +525,19 @@ class Radio {
   std::unique_ptr<ContendedMedium> contended_;  // levels collision and csma
   bool any_battery_ = false, failures_ = false;
   LinkFaults link_faults_;
-  // A tile: its static slots, its frames for the others, and its share of the totals that the
-  // tile absorbing it adds (the mobile nodes' share is the same in every tile).
-  bool tiled_ = false;
+  // A tile: its static slots, its frames for the others, its share of the totals (the tile
+  // absorbing it adds them); whether it runs the mobile nodes, ships their frames, and others do.
+  bool tiled_ = false, mobiles_here_ = true, ships_mobiles_ = false, others_run_mobiles_ = true;
   std::uint32_t owned_first_ = 0, owned_end_ = 0xFFFFFFFFu;
   bool owned_slot(std::uint32_t hot) const {
     return hot >= owned_first_ && hot < owned_end_;
   }
   double band_y_min_ = 0.0, band_y_max_ = 0.0;  // its static nodes' extent in y
   bool reaches_band(const Vec2& center, double range) const;
-  // The extents of the other tiles' static nodes (the slots before its own, and after): a frame
-  // that reaches neither and no mobile node is no other tile's business.
+  // The other tiles' static nodes' extents (slots before its own, and after): a frame that
+  // reaches neither and no mobile node another tile runs is no other tile's business.
   std::array<Eigen::AlignedBox2d, 2> others_extents_;
-  bool needed_by_other_tiles(NodeId source, NodeId destination, double range, bool reached) const;
+  bool needed_by_other_tiles(const Vec2& center, NodeId to, double range, bool reached) const;
   std::vector<FrameRecord> outbox_;
   std::function<void(const FrameRecord&)> outbox_sink_;
   FrameRecord outgoing_;  // the record handed to the sink

@@ -26,14 +26,23 @@ template <bool kTiled>
   if constexpr (kTiled) {
     // A tile books its own slots only: each run cut to them.
     const std::uint32_t first = owned_first_, end = owned_end_;
-    line_index_.for_each_run_within(center, job.range, [&](std::uint32_t a, std::uint32_t c) {
-      a = std::max(a, first);
-      c = std::min(c, end);
-      if (a >= c) return;
-      heard_diff[a] += booking;
-      heard_diff[c] -= booking;
-      hearers += c - a;
-    });
+    line_index_.for_each_run_within(
+        center, job.range,
+        [&](std::uint32_t a, std::uint32_t c) {
+          a = std::max(a, first);
+          c = std::min(c, end);
+          if (a >= c) return;
+          heard_diff[a] += booking;
+          heard_diff[c] -= booking;
+          hearers += c - a;
+        },
+        [heard_diff, first, end](std::uint32_t a, std::uint32_t c) {
+          a = std::max(a, first);
+          c = std::min(c, end);
+          if (a >= c) return;
+          __builtin_prefetch(heard_diff + a, 1);
+          __builtin_prefetch(heard_diff + c, 1);
+        });
   } else {
     hearers = line_index_.for_each_run_within(
         center, job.range,
@@ -169,7 +178,8 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
   std::uint64_t received = 0, lost = 0;
   const bool drains = battery && params_.energy.idle_power_w > 0;
   const std::uint32_t* const interest = interest_.data();
-  const Vec2 center = position(source);
+  // Another tile's frame was sent from where its sender stood then.
+  const Vec2 center = tiled && remote != nullptr ? remote->source_position : position(source);
   // Another tile's frame is judged under the link faults in force when it was sent.
   const LinkFaults& faults =
       links && tiled && remote != nullptr ? link_history_.at(remote->link_epoch) : link_faults_;
@@ -337,7 +347,7 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
   if (tiled && remote != nullptr) {
     // Another tile's frame: the mobile nodes that heard it then, and its addressee if this tile
     // holds it (the sender's tile counted an unreachable one).
-    for (std::size_t k = 0; k < remote->mobile_hearers.size(); ++k) {
+    for (std::size_t k = 0; k < remote->mobile_hearers.size() && mobiles_here_; ++k) {
       const NodeId id = remote->mobile_hearers[k];
       if (is_broadcast)
         receive(id, hot_[sim::index(id)], links ? remote->mobile_losses[k] : -1.0);
@@ -353,9 +363,15 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
     return Heard{hearers,        received,        lost,
                  static_hearers, static_received, remote->destination_reached};
   }
-  // A tile's static sender names the mobile hearers in its frame's record.
-  // With link faults, also the verdicts a remote tile could not reach later (the nodes move).
+  // A tile's static sender names the mobile hearers in its frame's record (for the tiles that
+  // run them: not needed in the record of a mobile sender's frame, shipped by the tile that runs
+  // every mobile node). With link faults, also the verdicts a remote tile could not reach later
+  // (the nodes move).
   const bool record = tiled && source_hot < static_count;
+  if (tiled && ships_mobiles_ && !record) {
+    record_mobiles_.clear();
+    record_losses_.clear();
+  }
   if (record) {
     record_mobiles_.clear();
     record_losses_.clear();
@@ -382,7 +398,8 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
         center, range,
         [&](NodeId id) {
           const double judged = record_mobile(id);
-          if (judged != kCutOff) receive(id, hot_[sim::index(id)], judged);
+          if (judged != kCutOff && (!tiled || mobiles_here_))
+            receive(id, hot_[sim::index(id)], judged);
         },
         source, sim::kNoNode);
   } else {
@@ -390,7 +407,8 @@ Radio::Heard Radio::hear(const Outgoing& out, const FrameRecord* remote) {
         center, range,
         [&](NodeId id) {
           const double judged = record_mobile(id);
-          if (judged != kCutOff) overhear(id, hot_[sim::index(id)], judged >= 0.0);
+          if (judged != kCutOff && (!tiled || mobiles_here_))
+            overhear(id, hot_[sim::index(id)], judged >= 0.0);
         },
         source, destination, destination_distance);
     // The addressee is decided by its distance, not by the grid's rounding at the boundary.

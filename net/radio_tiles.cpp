@@ -1,7 +1,7 @@
 // One tile of a run cut by space (docs/decisions/0012-partitioned-runs.md): a radio that books
-// and delivers to its own static nodes and to every mobile node, ships its static senders' frames
-// to the other tiles, takes theirs in, and at the end absorbs the other tiles' ledgers so that
-// one radio reads as the whole run's.
+// and delivers to its own static nodes and to the mobile nodes it runs, ships its static senders'
+// frames (and those of the mobile nodes, if only it runs them) to the other tiles, takes theirs in,
+// and at the end absorbs the other tiles' ledgers so that one radio reads as the whole run's.
 #include <algorithm>
 #include <limits>
 
@@ -42,19 +42,28 @@ void Radio::own_static_slots(std::uint32_t first, std::uint32_t end) {
   params_.overhearing_thread = false;
 }
 
-bool Radio::owns(NodeId node) const {
-  const std::uint32_t hot = hot_[sim::index(node)];
-  return hot >= static_ids_.size() || owned_slot(hot);
+void Radio::home_mobiles(bool here) {
+  MASNET_ASSERT(tiled_, "a tile's robots");
+  mobiles_here_ = here;
+  ships_mobiles_ = here;
+  others_run_mobiles_ = !here;
 }
 
-bool Radio::needed_by_other_tiles(NodeId source, NodeId destination, double range,
+bool Radio::owns(NodeId node) const {
+  const std::uint32_t hot = hot_[sim::index(node)];
+  return hot >= static_ids_.size() ? mobiles_here_ : owned_slot(hot);
+}
+
+bool Radio::needed_by_other_tiles(const Vec2& center, NodeId destination, double range,
                                   bool reached) const {
-  // Another tile delivers a frame to its copies of the mobile hearers and the addressee, and to
-  // its own static nodes within range.
-  if (!record_mobiles_.empty()) return true;
-  if (destination != sim::kNoNode && reached && hot_[sim::index(destination)] >= static_ids_.size())
-    return true;
-  const Vec2& center = positions_[sim::index(source)];
+  // Another tile delivers a frame to the mobile hearers and the addressee it runs, and to its own
+  // static nodes within range.
+  if (others_run_mobiles_) {
+    if (!record_mobiles_.empty()) return true;
+    if (destination != sim::kNoNode && reached &&
+        hot_[sim::index(destination)] >= static_ids_.size())
+      return true;
+  }
   const double reach = range + 1e-9 * (center.cwiseAbs().maxCoeff() + range + 1.0);  // rounding
   return std::any_of(others_extents_.begin(), others_extents_.end(), [&](const auto& extent) {
     return !extent.isEmpty() && extent.squaredExteriorDistance(center) <= reach * reach;

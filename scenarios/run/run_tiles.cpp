@@ -32,20 +32,39 @@ std::string tiles_problem(const ScenarioDef& def, unsigned tiles) {
   return {};
 }
 
-void RunTiles::own_band(agents::World& world, std::size_t k, std::size_t tiles) {
-  // Bands of equal sensor count in the radio's slot order: rows of a sensor grid.
+bool robots_in_first_tile(const agents::WorldDef& def) {
+  return sim::seconds(def.actuation_delay_s) >= sim::seconds(def.radio.latency_s) &&
+         !def.dispenser.enabled && !def.formation.enabled() &&
+         protocols::ground_truth_factory(def.protocol.kind) == nullptr;
+}
+
+std::uint32_t RunTiles::band_start(std::uint64_t slots, std::size_t k, std::size_t tiles,
+                                   bool robots_in_first) {
+  // Bands in the radio's slot order (rows of a sensor grid), of equal sensor count — or, when
+  // the first tile runs every robot, with a smaller first band for the robots' work.
+  const std::uint64_t first_weight = robots_in_first ? kFirstBandWeight : kBandWeight;
+  const std::uint64_t total = first_weight + (tiles - 1) * kBandWeight;
+  if (k == 0) return 0;
+  if (k == tiles) return static_cast<std::uint32_t>(slots);
+  return static_cast<std::uint32_t>(slots * (first_weight + (k - 1) * kBandWeight) / total);
+}
+
+void RunTiles::own_band(agents::World& world, std::size_t k, std::size_t tiles,
+                        bool robots_in_first) {
   const auto slots = static_cast<std::uint64_t>(world.radio().static_slots().size());
-  world.own_sensor_slots(static_cast<std::uint32_t>(slots * k / tiles),
-                         static_cast<std::uint32_t>(slots * (k + 1) / tiles));
+  world.own_sensor_slots(band_start(slots, k, tiles, robots_in_first),
+                         band_start(slots, k + 1, tiles, robots_in_first));
+  if (robots_in_first) world.home_robots(k == 0);
 }
 
 RunTiles::TileWorld RunTiles::make_tile(const agents::WorldDef& def, std::size_t k,
-                                        std::size_t tiles) {
+                                        std::size_t tiles, bool robots_in_first) {
   TileWorld tile;
   tile.simulator = std::make_unique<sim::Simulator>();
   tile.simulator->order_ties_by_origin();
   tile.world = std::make_unique<agents::World>(*tile.simulator, def);
-  own_band(*tile.world, k, tiles);  // builds the radio's index, the other half of the cost
+  // Builds the radio's index, the other half of the cost.
+  own_band(*tile.world, k, tiles, robots_in_first);
   return tile;
 }
 
@@ -53,11 +72,12 @@ RunTiles::Building RunTiles::build_others(const agents::WorldDef& def, unsigned 
                                           unsigned threads) {
   Building building;
   const unsigned workers = std::min(tiles, threads) - 1;  // the caller builds tile 0
+  const bool robots_in_first = robots_in_first_tile(def);
   for (unsigned w = 0; w < workers; ++w)
-    building.push_back(std::async(std::launch::async, [&def, tiles, workers, w] {
+    building.push_back(std::async(std::launch::async, [&def, tiles, workers, w, robots_in_first] {
       std::vector<std::pair<std::size_t, TileWorld>> built;
       for (std::size_t k = 1 + w; k < tiles; k += workers)
-        built.emplace_back(k, make_tile(def, k, tiles));
+        built.emplace_back(k, make_tile(def, k, tiles, robots_in_first));
       return built;
     }));
   return building;
@@ -69,19 +89,20 @@ RunTiles::RunTiles(sim::Simulator& simulator, agents::World& world, const agents
       tiles_(tiles),
       first_tile_(link ? link->rank() : 0),
       lookahead_(sim::seconds(def.radio.latency_s)),
+      robots_in_first_(tiles > 1 && robots_in_first_tile(def)),
       threads_(link ? 1 : std::clamp(threads, 1u, tiles)) {
   MASNET_ASSERT(!link || (link->size() == tiles && link->rank() < tiles), "one tile per rank");
   MASNET_ASSERT(!link || building.empty(), "over ranks each process builds its own tile");
   simulators_.push_back(&simulator);
   worlds_.push_back(&world);
-  own_band(world, first_tile_, tiles);
+  own_band(world, first_tile_, tiles, robots_in_first_);
   if (!link) {
     others_.resize(tiles - 1);
     for (auto& worker : building)
       for (auto& [k, tile] : worker.get())
         others_[k - 1] = std::move(tile);
     for (std::size_t k = 1; k < tiles; ++k) {
-      if (!others_[k - 1].world) others_[k - 1] = make_tile(def, k, tiles);
+      if (!others_[k - 1].world) others_[k - 1] = make_tile(def, k, tiles, robots_in_first_);
       simulators_.push_back(others_[k - 1].simulator.get());
       worlds_.push_back(others_[k - 1].world.get());
     }
@@ -117,7 +138,26 @@ void RunTiles::run_until(sim::Time limit) {
   share_totals();
 }
 
+void RunTiles::publish_courses() {
+  // The courses the robots chose in this window, for the other tiles' ghosts of them: each
+  // starts at least one window later (robots_in_first_tile).
+  published_courses_.clear();
+  if (first_tile_ == 0) std::swap(published_courses_, worlds_[0]->course_outbox());
+  if (!link_) return;
+  // Over ranks, from the first to every other, before the frames (whose inbox is read later).
+  for (std::size_t r = 0; r < tiles_; ++r) {
+    rank_outbox_[r].clear();
+    if (first_tile_ == 0 && r != 0)
+      sim::append_records(rank_outbox_[r], published_courses_.data(), published_courses_.size());
+  }
+  const std::vector<std::vector<std::byte>>& inbox = link_->exchange(rank_outbox_);
+  if (first_tile_ != 0) published_courses_ = sim::records_from<agents::World::Course>(inbox[0]);
+  for (std::vector<std::byte>& sent : rank_outbox_)
+    sent.clear();
+}
+
 void RunTiles::exchange() {
+  if (robots_in_first_) publish_courses();
   // Every tile has taken in what was published before this window: publish this window's.
   // The buffers keep their capacity (a window's frames are megabytes on large networks, and
   // fresh ones would be fresh pages) unless a burst left them far larger than a window needs.
@@ -153,6 +193,8 @@ void RunTiles::exchange() {
     }
   }
   published_earliest_ = sim::kTimeMax;
+  for (const agents::World::Course& course : published_courses_)
+    published_earliest_ = std::min(published_earliest_, course.when);
   for (const std::vector<net::FrameRecord>& frames : published_)
     for (const net::FrameRecord& record : frames)
       published_earliest_ = std::min(published_earliest_, record.arrival);
@@ -176,6 +218,9 @@ void RunTiles::take_in(std::size_t part) {
         radio.inject(received_);
   }
   rank_inbox_ = nullptr;  // over ranks this process runs one tile: its frames are taken in
+  if (tile != 0)
+    for (const agents::World::Course& course : published_courses_)
+      worlds_[part]->take_course(course);
 }
 
 void RunTiles::take_in_all() {
@@ -183,6 +228,7 @@ void RunTiles::take_in_all() {
     take_in(part);
   for (std::vector<net::FrameRecord>& frames : published_)
     frames.clear();
+  published_courses_.clear();
   published_earliest_ = sim::kTimeMax;
 }
 
@@ -243,10 +289,14 @@ void RunTiles::absorb_ranks() {
   std::vector<sim::Fingerprint> streams = simulators_[0]->origin_streams();
   const std::vector<sim::NodeId>& slots = world.radio().static_slots();
   const std::uint64_t slot_count = slots.size();
-  const std::uint64_t widest_band = (slot_count + tiles_ - 1) / tiles_;
+  std::uint64_t widest_band = 0;
+  for (std::size_t k = 0; k < tiles_; ++k)
+    widest_band = std::max<std::uint64_t>(widest_band,
+                                          band_start(slot_count, k + 1, tiles_, robots_in_first_) -
+                                              band_start(slot_count, k, tiles_, robots_in_first_));
   const std::uint64_t rounds =
       std::max<std::uint64_t>(1, (widest_band + kEndSlotsPerRound - 1) / kEndSlotsPerRound);
-  const auto band_first = static_cast<std::uint32_t>(slot_count * first_tile_ / tiles_);
+  const std::uint32_t band_first = band_start(slot_count, first_tile_, tiles_, robots_in_first_);
   for (std::uint64_t round = 0; round < rounds; ++round) {
     for (std::vector<std::byte>& bytes : rank_outbox_)
       std::vector<std::byte>().swap(bytes);

@@ -1,11 +1,12 @@
 #pragma once
 // One run cut into tiles by space (docs/decisions/0012-partitioned-runs.md): each tile is a
 // world of its own — its own simulator, in the origin order — that runs a band of the sensors and
-// every robot; the tiles advance together in conservative windows of the radio's latency on a
-// pool of threads, and the frames their sensors send cross to the other tiles between windows.
-// At the end the other tiles are absorbed into the first, whose world then reads as the whole
-// run's: every output and the fingerprint are those of the run in one piece. Over MPI ranks
-// (a TileLink), each rank runs one tile and the frames and ledgers cross as bytes.
+// every robot (or the first tile runs them alone: robots_in_first_tile); the tiles advance together
+// in conservative windows of the radio's latency on a pool of threads, and the frames their sensors
+// send cross to the other tiles between windows. At the end the other tiles are absorbed into the
+// first, whose world then reads as the whole run's: every output and the fingerprint are those of
+// the run in one piece. Over MPI ranks (a TileLink), each rank runs one tile and the frames and
+// ledgers cross as bytes.
 #include <cstddef>
 #include <cstdint>
 #include <future>
@@ -25,6 +26,11 @@ namespace masnet::scenarios {
 
 /// Why `def` cannot run in `tiles` tiles (empty: it can).
 std::string tiles_problem(const ScenarioDef& def, unsigned tiles);
+/// Whether the tiles of `def` leave every robot to the first tile (the others move ghosts of them
+/// by the courses it publishes) rather than each running every robot: when the robots act at
+/// least one window after they decide, and nothing but their protocol and the radio reads their
+/// decisions (no dispensers, robot groups or oracle's cells).
+bool robots_in_first_tile(const agents::WorldDef& def);
 
 /// The processes of a run cut over MPI ranks, one tile each (the `masnet` program makes one over
 /// ranks::RankExchange). Both calls are collective: every rank makes them in the same order.
@@ -79,8 +85,14 @@ class RunTiles {
 
  private:
   /// Tile k of `tiles`, its band set.
-  static TileWorld make_tile(const agents::WorldDef& def, std::size_t k, std::size_t tiles);
-  static void own_band(agents::World& world, std::size_t k, std::size_t tiles);
+  static TileWorld make_tile(const agents::WorldDef& def, std::size_t k, std::size_t tiles,
+                             bool robots_in_first);
+  static void own_band(agents::World& world, std::size_t k, std::size_t tiles,
+                       bool robots_in_first);
+  /// The first of `slots` in band k (k = tiles: the end).
+  static std::uint32_t band_start(std::uint64_t slots, std::size_t k, std::size_t tiles,
+                                  bool robots_in_first);
+  void publish_courses();
   void exchange();
   /// Books and delivers into local tile `part` the frames the other tiles sent in the last window.
   void take_in(std::size_t part);
@@ -107,10 +119,14 @@ class RunTiles {
   const std::vector<std::vector<std::byte>>* rank_inbox_ = nullptr;
   net::FrameRecord received_;  // the one being taken in (its buffers reused)
   static constexpr std::uint64_t kEndSlotsPerRound = 1 << 14;  // a ledger sent in pieces
-  static constexpr std::size_t kBurstBytes = 16 << 20;         // a rank's buffers kept up to this
+  // Band sizes: the first band's weight when its tile runs every robot (and the others not).
+  static constexpr std::uint64_t kBandWeight = 100, kFirstBandWeight = 25;
+  static constexpr std::size_t kBurstBytes = 16 << 20;  // a rank's buffers kept up to this
   std::uint64_t other_ranks_events_ = 0;
-  sim::Time published_earliest_ = sim::kTimeMax;  // the earliest arrival among them
+  sim::Time published_earliest_ = sim::kTimeMax;  // the earliest arrival among them (or course)
+  std::vector<agents::World::Course> published_courses_;  // the first tile's, of the last window
   sim::Duration lookahead_{};
+  bool robots_in_first_ = false;
   unsigned threads_ = 1;
   sim::Fingerprint fingerprint_;
   bool absorbed_ = false;

@@ -18,6 +18,7 @@ struct FrameHead {
   sim::Time sent_at{}, arrival{};
   sim::EventKey key;
   sim::NodeId source{}, destination{};
+  double source_x = 0.0, source_y = 0.0;
   double range = 0.0, destination_distance = 0.0;
   std::uint64_t frame_number = 0;
   std::uint32_t type_index = 0, bytes = 0, hearers = 0, payload_index = 0;
@@ -149,6 +150,8 @@ void FrameWriter::add(const net::FrameRecord& f) {
                        f.key,
                        f.source,
                        f.destination,
+                       f.source_position.x(),
+                       f.source_position.y(),
                        f.range,
                        f.destination_distance,
                        f.frame_number,
@@ -204,6 +207,7 @@ bool FrameReader::next(net::FrameRecord& f) {
   f.key = head.key;
   f.source = head.source;
   f.destination = head.destination;
+  f.source_position = net::Vec2{head.source_x, head.source_y};
   f.range = head.range;
   f.destination_distance = head.destination_distance;
   f.frame_number = head.frame_number;

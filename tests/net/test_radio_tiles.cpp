@@ -1,10 +1,11 @@
 // A radio cut into tiles by space (docs/decisions/0012-partitioned-runs.md): each tile books and
-// delivers to its own static nodes and to every mobile node, ships its static senders' frames to
-// the other tiles after each conservative window, and the tiles' ledgers, absorbed into one, read
-// as the whole radio's. A network of sensors on a grid and robots on circles exchanges SENSE,
-// READING, REPORT and NEIGHBOR frames; cut into 2 and 3 tiles on 1 and 2 threads, every node
-// receives the same frames at the same times and every counter and energy is the same — also
-// under partitions and degraded areas that change while frames wait to cross.
+// delivers to its own static nodes and to every mobile node (or the first tile alone runs them),
+// ships its static senders' frames to the other tiles after each conservative window, and the
+// tiles' ledgers, absorbed into one, read as the whole radio's. A network of sensors on a grid and
+// robots on circles exchanges SENSE, READING, REPORT and NEIGHBOR frames; cut into 2 and 3 tiles on
+// 1 and 2 threads, every node receives the same frames at the same times and every counter and
+// energy is the same — also under partitions and degraded areas that change while frames wait to
+// cross.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -67,10 +68,11 @@ struct Network : net::RadioListener {
     for (std::uint32_t r = 0; r < kRobots; ++r)
       radio->add_mobile_node(sim::node_id(kSensors + r), kSensors + r);
   }
-  // Robots ask the sensors around them every 10 ms, each at its own phase.
-  void start() {
+  // Robots ask the sensors around them every 10 ms, each at its own phase (`robots`: this
+  // network runs them).
+  void start(bool robots = true) {
     if (g_link_faults) sim.after(sim::seconds(0.007), [this] { toggle_link_faults(1); });
-    for (std::uint32_t r = 0; r < kRobots; ++r) {
+    for (std::uint32_t r = 0; r < kRobots && robots; ++r) {
       const NodeId robot = sim::node_id(kSensors + r);
       sim.after_as(sim::origin_of(robot), sim::seconds(0.001 * (r + 1)),
                    [this, robot] { sense(robot); });
@@ -116,8 +118,10 @@ struct Tiled {
 };
 
 // The whole network cut into `count` tiles of contiguous slots, run in windows of the radio's
-// latency on `threads` threads, the frames that crossed shipped after each window.
-Tiled run_tiled(const net::RadioParams& params, std::uint32_t count, unsigned threads) {
+// latency on `threads` threads, the frames that crossed shipped after each window. With
+// `robots_in_first`, only the first tile runs the robots (whose course no decision changes).
+Tiled run_tiled(const net::RadioParams& params, std::uint32_t count, unsigned threads,
+                bool robots_in_first) {
   Tiled t;
   std::vector<sim::Simulator*> parts;
   for (std::uint32_t i = 0; i < count; ++i) {
@@ -125,7 +129,8 @@ Tiled run_tiled(const net::RadioParams& params, std::uint32_t count, unsigned th
     net::Radio& radio = *t.tiles.back()->radio;
     const auto slots = static_cast<std::uint32_t>(radio.static_slots().size());
     radio.own_static_slots(slots * i / count, slots * (i + 1) / count);
-    t.tiles.back()->start();
+    if (robots_in_first) radio.home_mobiles(i == 0);
+    t.tiles.back()->start(!robots_in_first || i == 0);
     parts.push_back(&t.tiles.back()->sim);
   }
   sim::WindowedRun run(parts, sim::seconds(params.latency_s), threads);
@@ -173,7 +178,7 @@ void check_same_ledger(net::Radio& whole, net::Radio& merged) {
   CHECK(whole.traffic_fingerprint().value() == merged.traffic_fingerprint().value());
 }
 
-void check_tiles_equal_whole(const net::RadioParams& params) {
+void check_tiles_equal_whole(const net::RadioParams& params, bool robots_in_first = false) {
   Network whole(params);
   whole.start();
   whole.sim.run_until(kEnd);
@@ -184,7 +189,7 @@ void check_tiles_equal_whole(const net::RadioParams& params) {
   for (const std::uint32_t count : {2u, 3u}) {
     for (const unsigned threads : {1u, 2u}) {
       INFO(count << " tiles on " << threads << " threads");
-      Tiled tiled = run_tiled(params, count, threads);
+      Tiled tiled = run_tiled(params, count, threads, robots_in_first);
       std::uint64_t crossed_reports = 0;
       for (std::uint32_t n = 0; n < kSensors + kRobots; ++n) {
         INFO("node " << n);
@@ -228,6 +233,24 @@ TEST_CASE("radio tiles: 2 and 3 tiles on 1 and 2 threads deliver and book as the
   net::RadioParams params;
   params.level = net::RadioLevel::ideal;
   check_tiles_equal_whole(params);
+}
+
+TEST_CASE("radio tiles: robots run by the first tile alone, which ships their frames",
+          "[net][tiles]") {
+  // The other tiles neither book nor deliver a frame to a robot: they ship it to the first,
+  // which books and delivers it there, and ships the robots' frames to them.
+  net::RadioParams params;
+  params.level = net::RadioLevel::ideal;
+  check_tiles_equal_whole(params, true);
+  params.level = net::RadioLevel::airtime;
+  params.loss = 0.2;
+  check_tiles_equal_whole(params, true);
+  params.level = net::RadioLevel::ideal;
+  params.latency_s = 0.01;
+  params.loss = 0.1;
+  g_link_faults = true;
+  check_tiles_equal_whole(params, true);
+  g_link_faults = false;
 }
 
 TEST_CASE("radio tiles: under partitions and degraded areas that change while frames cross",
@@ -295,4 +318,45 @@ TEST_CASE("radio tiles: a frame is shipped only when another tile has a node it 
       beside = k;
   REQUIRE((radio.position(sim::node_id(beside)) - robot_at).norm() < range);
   CHECK(shipped_after([&] { radio.broadcast(sim::node_id(beside), range, report); }) == 1);
+}
+
+TEST_CASE("radio tiles: a frame crosses to the tile that runs the robots only if they need it",
+          "[net][tiles]") {
+  // Tile 2 of 3 owns rows 16 to 23 (y from 4.0). Robot 5 stands at y ≈ 4.04, just inside it.
+  net::RadioParams params;
+  params.level = net::RadioLevel::ideal;
+  const NodeId robot = sim::node_id(kSensors + 5);
+  const net::Neighbor hello{sim::node_id(0), Vec2{0, 0}};
+  const net::Sense sense{robot, 0, {}};
+  for (const bool robots_here : {false, true}) {
+    INFO("this tile runs the robots: " << robots_here);
+    Network tile(params);
+    net::Radio& radio = *tile.radio;
+    const auto slots = static_cast<std::uint32_t>(radio.static_slots().size());
+    radio.own_static_slots(slots * 2 / 3, slots);
+    radio.home_mobiles(robots_here);
+    auto shipped_after = [&](auto send) {
+      radio.outbox().clear();
+      send();
+      return radio.outbox().size();
+    };
+    const Vec2 robot_at = tile.circles.position(robot);
+    const NodeId sensor = sim::node_id(17 * kSide + 21);  // (5.25, 4.25)
+    const double distance = (radio.position(sensor) - robot_at).norm();
+    // The sensor's disk to the robot holds no row of another tile and no other robot.
+    REQUIRE(radio.position(sensor).y() - distance > 4.0);
+    for (std::uint32_t r = 0; r < kRobots; ++r)
+      if (r != 5)
+        REQUIRE(
+            (tile.circles.position(sim::node_id(kSensors + r)) - radio.position(sensor)).norm() >
+            distance);
+    // To the robot: another tile's business unless this one runs it.
+    CHECK(shipped_after([&] { radio.unicast(sensor, robot, hello); }) == (robots_here ? 0 : 1));
+    if (!robots_here) continue;
+    // The robot's own frames cross when they reach another tile's rows (row 15, y = 3.75).
+    REQUIRE(robot_at.y() - 0.3 < 3.75);
+    REQUIRE(robot_at.y() - 0.02 > 3.75);
+    CHECK(shipped_after([&] { radio.broadcast(robot, 0.3, sense); }) == 1);
+    CHECK(shipped_after([&] { radio.broadcast(robot, 0.02, sense); }) == 0);
+  }
 }

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `masnet run` started by mpirun: one run in one tile per rank (docs/decisions/0012-partitioned-
 # runs.md). Every file of the run directory equals the run in one piece but for what the run cost
-# (summary.json's events and wall time), with a fault too; --tiles other than the number of ranks is refused, and a
+# (summary.json's events and wall time), with a fault too, and with the robots in the first rank;
+# --tiles other than the number of ranks is refused, and a
 # scenario file one rank cannot read stops every rank (exit 2, the message once, never a hang).
 # Usage: run_over_ranks.sh <masnet> <mpiexec> <source dir> <ranks>
 set -euo pipefail
@@ -13,12 +14,14 @@ scenario=(run "$source/scenarios/paper/acoustic_tracking.yaml" --set tie_order=o
   --set output.report=false --quiet)
 mpi=("$mpiexec" --oversubscribe --allow-run-as-root -n "$ranks")
 
-# The run, and the run with a fault (whose fault-free twin only the first rank runs), over ranks
-# and in one piece.
+# The run, the run with a fault (whose fault-free twin only the first rank runs), and the run
+# whose robots act a window late (the first rank runs them all), over ranks and in one piece.
 with_fault=(--set 'faults=[{at: 0.5, kill: robots, ids: [0]}]')
-for variant in plain fault; do
+late=(--set robots.actuation_delay=0.0001 --set 'faults=[{at: 0.5, until: 0.7, kill: robots, ids: [2]}]')
+for variant in plain fault late; do
   extra=()
   [ "$variant" = fault ] && extra=("${with_fault[@]}")
+  [ "$variant" = late ] && extra=("${late[@]}")
   "$masnet" "${scenario[@]}" "${extra[@]}" --out "$work/whole-$variant"
   "${mpi[@]}" "$masnet" "${scenario[@]}" "${extra[@]}" --out "$work/ranks-$variant" \
     2> "$work/ranks.stderr"

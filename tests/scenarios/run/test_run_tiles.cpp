@@ -1,5 +1,6 @@
 // A run cut into tiles by space (scenarios/run/run_tiles.hpp, docs/decisions/0012-partitioned-
-// runs.md): bands of sensors side by side in conservative windows, every robot in every tile.
+// runs.md): bands of sensors side by side in conservative windows, every robot in every tile (or,
+// when the robots act a window late, in the first tile only).
 // Every output file and both fingerprints equal the run in one piece, for 2 and 3 tiles on one
 // and two threads (the acoustic and pollution scenarios, robot groups, beacons, kills, link
 // faults, the oracle), and over ranks (threads standing in for MPI ranks: every frame, share and
@@ -173,11 +174,57 @@ TEST_CASE("tiles: the acoustic scenario cut into bands gives every output of the
 
 TEST_CASE("tiles: robots that act one window after choosing a target, in bands",
           "[scenarios][tiles]") {
-  // The actuation delay of a home-tile run (docs/decisions/0012-partitioned-runs.md): its
-  // delayed course changes are the robots' own events, in every tile alike.
+  // With an actuation delay of at least the window the first tile runs every robot and the
+  // others move ghosts of them by the courses it publishes (docs/decisions/0012-partitioned-
+  // runs.md, "Robots in the first tile"), also over ranks (threads standing in). A ghost
+  // that missed a course would answer the wrong robot, a tile that delivered to its ghosts would
+  // run their protocol: either changes the outputs.
   check_in_tiles("scenarios/paper/acoustic_tracking.yaml",
                  {"tie_order=origin", "duration=0.3", "output.snapshots=[0.25]",
                   "robots.actuation_delay=0.000114"});
+  check_in_tiles("scenarios/bench/scaling_1e4.yaml",
+                 {"tie_order=origin", "duration=0.06", "output.sample_period=0.01",
+                  "output.trajectory_period=0.01", "robots.actuation_delay=0.00005"});
+  check_in_tiles("scenarios/bench/scaling_1e5.yaml",
+                 {"tie_order=origin", "duration=0.015", "output.sample_period=0.005",
+                  "robots.actuation_delay=0.00005"});
+}
+
+TEST_CASE("tiles: robots in the first tile, killed and restarted, with beacons and link faults",
+          "[scenarios][tiles]") {
+  // A robot killed with a course pending (the ghosts must drop it too) and restarted; robots'
+  // beacons (sent by the first tile only); a partition and a degraded area across the bands.
+  check_in_tiles(
+      "scenarios/paper/acoustic_tracking.yaml",
+      {"tie_order=origin", "duration=3", "output.snapshots=[1.5]", "robots.actuation_delay=0.002",
+       "faults=[{at: 1.0, until: 2.0, kill: sensors, fraction: 0.1}, {at: 0.5, until: 2.5, kill: "
+       "robots, ids: [1, 3]}]"});
+  check_in_tiles("scenarios/examples/beacons.yaml",
+                 {"tie_order=origin", "duration=3", "robots.actuation_delay=0.001"});
+  check_in_tiles(
+      "scenarios/paper/acoustic_tracking.yaml",
+      {"tie_order=origin", "duration=3", "output.snapshots=[1.5]", "radio.loss=0.05",
+       "robots.actuation_delay=0.0002",
+       "faults=[{at: 0.6, until: 2.2, partition: {line: [[0.5, 0.0], [0.5, 1.0]]}}, {at: 1.0, "
+       "until: 2.5, degrade: {region: {center: [0.5, 0.5], radius: 0.3}, loss: 0.4}}]"});
+}
+
+TEST_CASE("tiles: robots stay in every tile unless they act at least one window late",
+          "[scenarios][tiles]") {
+  const std::string acoustic = "scenarios/paper/acoustic_tracking.yaml";
+  const std::vector<std::string> origin{"tie_order=origin"};
+  auto in_first = [](const ScenarioDef& def) { return robots_in_first_tile(def.world); };
+  // The acoustic scenario's window is its radio latency, 50 µs.
+  CHECK(in_first(load(acoustic, {"tie_order=origin", "robots.actuation_delay=0.00005"})));
+  CHECK_FALSE(in_first(load(acoustic, {"tie_order=origin", "robots.actuation_delay=0.00004"})));
+  CHECK_FALSE(in_first(load(acoustic, origin)));
+  // Dispensers, formations and the oracle read what the robots decide outside the radio.
+  CHECK_FALSE(in_first(load("scenarios/paper/pollution_control.yaml",
+                            {"tie_order=origin", "robots.actuation_delay=0.001"})));
+  CHECK_FALSE(in_first(load("scenarios/paper/formation_tracking.yaml",
+                            {"tie_order=origin", "robots.actuation_delay=0.001"})));
+  CHECK_FALSE(in_first(load(
+      acoustic, {"tie_order=origin", "robots.actuation_delay=0.001", "protocol.kind=oracle"})));
 }
 
 TEST_CASE("tiles: the pollution scenario (diffusion, dispensers, its baseline) in bands",
