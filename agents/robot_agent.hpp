@@ -103,10 +103,7 @@ class World::RobotAgent final : public protocols::RobotHost {
       const double x = target.x(), y = target.y();
       const std::uint32_t generation = generation_;
       const sim::Time when = now() + delay;
-      if (world_.keeps_courses_)  // the other tiles' ghosts of it steer with the same key
-        world_.course_outbox_.push_back(World::Course{when, world_.simulator_.peek_key(when),
-                                                      static_cast<std::uint32_t>(index_),
-                                                      generation, x, y});
+      if (world_.keeps_courses_) world_.keep_course(index_, generation, when, target);
       world_.simulator_.after(delay, [this, x, y, generation] {
         if (generation == generation_) steer(Vec2{x, y});
       });

@@ -169,24 +169,6 @@ void World::start() {
       if (radio_.owns(sensor_node(s))) schedule(sensor_node(s), sensor_key(s));
 }
 
-void World::home_robots(bool here) {
-  MASNET_ASSERT(actuation_delay_.count() > 0, "robots in one tile act after a delay");
-  radio_.home_mobiles(here);
-  robots_here_ = here;
-  keeps_courses_ = here;
-}
-
-void World::take_course(const Course& course) {
-  MASNET_ASSERT(!robots_here_ && course.robot < robots_.size(), "a course of a ghost robot");
-  RobotAgent* agent = robots_[course.robot].get();
-  const std::uint32_t generation = course.generation;
-  const double x = course.x, y = course.y;
-  simulator_.at_keyed(course.when, course.key, sim::origin_of(robot_node(course.robot)),
-                      [agent, generation, x, y] {
-                        if (agent->generation() == generation) agent->steer(Vec2{x, y});
-                      });
-}
-
 void World::absorb_tile(const TileCounts& counts, const net::Radio::TileLedger& ledger) {
   radio_.absorb_tile(ledger);
   absorbed_.readings += counts.readings;

@@ -294,6 +294,10 @@ class World final : public net::RadioListener,
   TileCounts robot_reads_;  // what the robots read themselves (the oracle), of the counts above
   bool robots_here_ = true, keeps_courses_ = false;  // home_robots()
   std::vector<Course> course_outbox_;
+  /// A course `robot` chose, for the other tiles' ghosts of it: they steer with the same key. Out
+  /// of line: inlined in the robot's set_target, it stopped the senders of world.cpp inlining the
+  /// payload's move.
+  void keep_course(std::size_t robot, std::uint32_t generation, sim::Time when, const Vec2& target);
 };
 
 }  // namespace masnet::agents
