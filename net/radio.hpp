@@ -526,8 +526,8 @@ class Radio {
   bool any_battery_ = false, failures_ = false;
   LinkFaults link_faults_;
   // A tile: its static slots, its frames for the others, its share of the totals (the tile
-  // absorbing it adds them); whether it runs the mobile nodes, ships their frames, and others do.
-  bool tiled_ = false, mobiles_here_ = true, ships_mobiles_ = false, others_run_mobiles_ = true;
+  // absorbing it adds them); whether it runs the mobile nodes, and alone (then it ships theirs).
+  bool tiled_ = false, mobiles_here_ = true, ships_mobiles_ = false;
   std::uint32_t owned_first_ = 0, owned_end_ = 0xFFFFFFFFu;
   bool owned_slot(std::uint32_t hot) const {
     return hot >= owned_first_ && hot < owned_end_;

@@ -26,20 +26,21 @@ template <bool kTiled>
   if constexpr (kTiled) {
     // A tile books its own slots only: each run cut to them.
     const std::uint32_t first = owned_first_, end = owned_end_;
+    auto cut = [first, end](std::uint32_t& a, std::uint32_t& c) {
+      a = std::max(a, first);
+      c = std::min(c, end);
+      return a < c;
+    };
     line_index_.for_each_run_within(
         center, job.range,
         [&](std::uint32_t a, std::uint32_t c) {
-          a = std::max(a, first);
-          c = std::min(c, end);
-          if (a >= c) return;
+          if (!cut(a, c)) return;
           heard_diff[a] += booking;
           heard_diff[c] -= booking;
           hearers += c - a;
         },
-        [heard_diff, first, end](std::uint32_t a, std::uint32_t c) {
-          a = std::max(a, first);
-          c = std::min(c, end);
-          if (a >= c) return;
+        [heard_diff, cut](std::uint32_t a, std::uint32_t c) {
+          if (!cut(a, c)) return;
           __builtin_prefetch(heard_diff + a, 1);
           __builtin_prefetch(heard_diff + c, 1);
         });

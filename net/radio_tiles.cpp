@@ -46,7 +46,6 @@ void Radio::home_mobiles(bool here) {
   MASNET_ASSERT(tiled_, "a tile's robots");
   mobiles_here_ = here;
   ships_mobiles_ = here;
-  others_run_mobiles_ = !here;
 }
 
 bool Radio::owns(NodeId node) const {
@@ -58,7 +57,7 @@ bool Radio::needed_by_other_tiles(const Vec2& center, NodeId destination, double
                                   bool reached) const {
   // Another tile delivers a frame to the mobile hearers and the addressee it runs, and to its own
   // static nodes within range.
-  if (others_run_mobiles_) {
+  if (!ships_mobiles_) {  // another tile runs the mobile nodes
     if (!record_mobiles_.empty()) return true;
     if (destination != sim::kNoNode && reached &&
         hot_[sim::index(destination)] >= static_ids_.size())
